@@ -1,0 +1,38 @@
+# hgridlab front door. `make` builds, `make test` runs the tests,
+# `make figures` draws the paper's figures, `make bench` runs the benchmarks.
+BUILD ?= build
+JOBS  ?= $(shell nproc 2>/dev/null || echo 2)
+SCALE ?= default
+CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
+
+.PHONY: all build test test-asan figures bench deps clean
+
+all: build
+
+# Installs the Debian packages hgridlab needs when any is missing (root only).
+deps:
+	@bash .ci/deps.sh
+
+$(BUILD)/CMakeCache.txt:
+	cmake -S . -B $(BUILD) $(CMAKE_FLAGS)
+
+build: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS)
+
+test: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# Debug build of the tests with AddressSanitizer and UBSan.
+test-asan:
+	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DHGRID_SANITIZE=ON -DHGRID_BUILD_BENCH=OFF
+	cmake --build build-asan -j $(JOBS) --target hgrid_tests hgrid
+	cd build-asan && ctest --output-on-failure -j $(JOBS)
+
+figures: build
+	bash plots/make_figures.sh $(SCALE)
+
+bench: build
+	@for b in $(BUILD)/bench_*; do echo "== $$b"; $$b --benchmark_counters_tabular=true || exit 1; done
+
+clean:
+	rm -rf $(BUILD) build-asan

@@ -1,0 +1,207 @@
+// hgrid pairs / hgrid count: the HGrid on a packing file.
+#include <charconv>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cli/common.hpp"
+#include "cli/grid_sizes.hpp"
+#include "hgrid/brute_force.hpp"
+#include "hgrid/dispatch.hpp"
+#include "hgrid/hgrid.hpp"
+#include "hgrid/packing.hpp"
+
+namespace hgrid::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+Search parse_search(const std::string& s) {
+  if (s == "topdown") return Search::top_down;
+  if (s == "bottomup") return Search::bottom_up;
+  throw InputError("search", "must be 'topdown' or 'bottomup' (got '" + s + "')");
+}
+
+/// Buffered "i j\n" writer for large pair lists.
+class PairWriter {
+ public:
+  void operator()(std::uint32_t i, std::uint32_t j) {
+    if (buf_.size() - used_ < 32) flush();
+    char* p = buf_.data() + used_;
+    p = std::to_chars(p, buf_.data() + buf_.size(), i).ptr;
+    *p++ = ' ';
+    p = std::to_chars(p, buf_.data() + buf_.size(), j).ptr;
+    *p++ = '\n';
+    used_ = static_cast<std::size_t>(p - buf_.data());
+  }
+  void flush() {
+    std::fwrite(buf_.data(), 1, used_, stdout);
+    used_ = 0;
+  }
+  ~PairWriter() { flush(); }
+
+ private:
+  std::string buf_ = std::string(1 << 16, '\0');
+  std::size_t used_ = 0;
+};
+
+struct GridOptions {
+  std::string file;
+  std::string sizes;
+  std::string search = "topdown";
+  SizeRequest request;
+};
+
+void add_grid_options(CLI::App* sub, GridOptions& o) {
+  sub->add_option("FILE", o.file, "packing file (.h5 or .csv)")->required();
+  auto* sizes = sub->add_option("--sizes", o.sizes, "cell sizes s1,s2,...,sL (increasing, same unit as the radii)");
+  auto* cells = sub->add_option("--cells", o.request.method,
+                                "choose the sizes with the cost model: linear|exponential|constant|optimal");
+  sizes->excludes(cells);
+  sub->add_option("--levels", o.request.levels, "with --cells: number of levels L (default: the best L*)");
+  sub->add_option("--q", o.request.q, "with --cells constant: ratio of particles per cell between levels")
+      ->default_val(1.0);
+  sub->add_option("--search", o.search, "cross-level search: topdown|bottomup")->default_val("topdown");
+}
+
+GridParams resolve(const GridOptions& o, const Packing& p, double K) {
+  GridParams g;
+  g.search = parse_search(o.search);
+  if (!o.sizes.empty()) {
+    g.sizes = parse_list(o.sizes, "sizes");
+  } else if (!o.request.method.empty()) {
+    g.sizes = model_sizes(p, o.request, g.search, K);
+  } else {
+    throw InputError("sizes", "give --sizes s1,...,sL or --cells METHOD");
+  }
+  return g;
+}
+
+void run_pairs(const GridOptions& o, bool brute) {
+  const Packing p = read_packing(o.file);
+  const GridParams g = brute ? GridParams{} : resolve(o, p, 0.2);
+  dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
+    constexpr int D = decltype(dim)::value;
+    constexpr Boundary B = decltype(bnd)::value;
+    const auto spheres = p.spheres<D>();
+    PairWriter out;
+    if (brute) {
+      brute_force_pairs<D, B>(std::span<const Sphere<D>>(spheres), p.extent<D>(), out);
+    } else {
+      const HGrid<D, B> grid(spheres, p.extent<D>(), g);
+      grid.for_each_pair(out);
+    }
+  });
+}
+
+nlohmann::json count_json(const Packing& p, const GridParams& g, const std::vector<double>& used, const Counters& c,
+                          double K, double t_build, double t_query) {
+  using nlohmann::json;
+  const double n = static_cast<double>(p.size());
+  json j;
+  j["n"] = p.size();
+  j["d"] = p.d;
+  j["boundary"] = to_string(p.boundary);
+  j["packing_fraction"] = p.packing_fraction();
+  j["search"] = to_string(g.search);
+  j["K"] = K;
+  j["sizes_requested"] = g.sizes;
+  j["sizes"] = used;
+  j["levels"] = c.levels;
+  j["cell_accesses"] = c.cell_accesses;
+  j["narrow_phase_checks"] = c.narrow_phase_checks;
+  j["contacts"] = c.contacts;
+  j["T_over_N"] = n > 0 ? c.cost(K) / n : 0.0;
+  j["T_cd_over_N"] = n > 0 ? static_cast<double>(c.narrow_phase_checks) / n : 0.0;
+  j["T_ca_over_N"] = n > 0 ? static_cast<double>(c.cell_accesses) / n : 0.0;
+  json levels = json::array();
+  const int L = c.levels;
+  for (int h = 0; h < L; ++h) {
+    json row;
+    row["level"] = h + 1;
+    row["size"] = used[h];
+    row["particles"] = c.particles_per_level[h];
+    std::uint64_t acc = 0, chk = 0;
+    json acc_row = json::array(), chk_row = json::array();
+    for (int k = 0; k < L; ++k) {
+      acc += c.accesses_by_level[h * L + k];
+      chk += c.checks_by_level[h * L + k];
+      acc_row.push_back(c.accesses_by_level[h * L + k]);
+      chk_row.push_back(c.checks_by_level[h * L + k]);
+    }
+    row["cell_accesses"] = acc;
+    row["narrow_phase_checks"] = chk;
+    row["cell_accesses_by_level_searched"] = acc_row;
+    row["narrow_phase_checks_by_level_searched"] = chk_row;
+    levels.push_back(row);
+  }
+  j["per_level"] = levels;
+  j["seconds_build"] = t_build;
+  j["seconds_query"] = t_query;
+  return j;
+}
+
+void print_count_table(const nlohmann::json& j) {
+  std::printf("n = %zu, d = %d, %s, nu = %.6g, search %s, K = %g\n", j["n"].get<std::size_t>(), j["d"].get<int>(),
+              j["boundary"].get<std::string>().c_str(), j["packing_fraction"].get<double>(),
+              j["search"].get<std::string>().c_str(), j["K"].get<double>());
+  std::printf("%5s %14s %12s %16s %20s\n", "level", "size", "particles", "cell_accesses", "narrow_phase_checks");
+  for (const auto& row : j["per_level"])
+    std::printf("%5d %14.6g %12llu %16llu %20llu\n", row["level"].get<int>(), row["size"].get<double>(),
+                row["particles"].get<unsigned long long>(), row["cell_accesses"].get<unsigned long long>(),
+                row["narrow_phase_checks"].get<unsigned long long>());
+  std::printf("total: %llu cell accesses, %llu narrow-phase checks, %llu contacts, T/N = %.6g\n",
+              j["cell_accesses"].get<unsigned long long>(), j["narrow_phase_checks"].get<unsigned long long>(),
+              j["contacts"].get<unsigned long long>(), j["T_over_N"].get<double>());
+}
+
+void run_count(const GridOptions& o, double K, bool as_json) {
+  if (!(std::isfinite(K) && K >= 0)) throw InputError("K", "must be finite and >= 0");
+  const Packing p = read_packing(o.file);
+  const GridParams g = resolve(o, p, K);
+  const nlohmann::json j = dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
+    constexpr int D = decltype(dim)::value;
+    constexpr Boundary B = decltype(bnd)::value;
+    const auto spheres = p.spheres<D>();
+    auto t0 = Clock::now();
+    const HGrid<D, B> grid(spheres, p.extent<D>(), g);
+    const double t_build = seconds_since(t0);
+    t0 = Clock::now();
+    const Counters c = grid.template for_each_pair<Counted>([](std::uint32_t, std::uint32_t) {});
+    const double t_query = seconds_since(t0);
+    return count_json(p, g, grid.sizes(), c, K, t_build, t_query);
+  });
+  if (as_json)
+    std::cout << j.dump(2) << "\n";
+  else
+    print_count_table(j);
+}
+
+}  // namespace
+
+void register_grid_commands(CLI::App& app) {
+  {
+    auto o = std::make_shared<GridOptions>();
+    auto brute = std::make_shared<bool>(false);
+    auto* sub = app.add_subcommand("pairs", "print every overlapping pair 'i j' (0-based, i < j), one per line");
+    add_grid_options(sub, *o);
+    sub->add_flag("--brute", *brute, "use the O(N^2) brute force instead of the HGrid");
+    sub->callback([o, brute] { run_pairs(*o, *brute); });
+  }
+  {
+    auto o = std::make_shared<GridOptions>();
+    auto K = std::make_shared<double>(0.2);
+    auto js = std::make_shared<bool>(false);
+    auto* sub = app.add_subcommand("count", "count cell accesses and narrow-phase checks of one contact search");
+    add_grid_options(sub, *o);
+    sub->add_option("--K", *K, "cell access time / overlap test time, for T = checks + K accesses")->default_val(0.2);
+    sub->add_flag("--json", *js, "print one JSON object");
+    sub->callback([o, K, js] { run_count(*o, *K, *js); });
+  }
+}
+
+}  // namespace hgrid::cli

@@ -1,0 +1,19 @@
+// Helpers shared by the hgrid subcommands.
+#pragma once
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+namespace hgrid::cli {
+
+/// Each subcommand file provides one of these; main.cpp calls them all.
+void register_grid_commands(CLI::App& app);   // pairs, count      (cmd_grid.cpp)
+void register_model_commands(CLI::App& app);  // model, modelfigs  (cmd_model.cpp)
+
+/// Exit status for bad input (file, parameter): one line on stderr, status 2.
+inline constexpr int kBadInput = 2;
+
+/// Parse "a,b,c" into doubles; throws hgrid::InputError naming `field`.
+std::vector<double> parse_list(const std::string& text, const std::string& field);
+
+}  // namespace hgrid::cli

@@ -1,0 +1,101 @@
+// Geometry of one HGrid level and the flat cell directory behind it.
+#pragma once
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "hgrid/error.hpp"
+#include "hgrid/geometry.hpp"
+
+namespace hgrid::detail {
+
+inline constexpr std::uint64_t kEmptyKey = std::numeric_limits<std::uint64_t>::max();
+inline constexpr std::uint64_t kNoBucket = std::numeric_limits<std::uint64_t>::max();
+/// Cells per axis are limited so that a cell key (linear index) fits 63 bits.
+inline constexpr std::int64_t kMaxCellsPerAxis = std::int64_t{1} << 21;
+/// A level is stored densely (one bucket per cell) while it has at most this
+/// many cells per particle on it (plus a small constant); otherwise its
+/// non-empty cells go into an open-addressing table of twice their number.
+inline constexpr std::uint64_t kDenseCellsPerParticle = 4;
+
+inline std::uint64_t hash_key(std::uint64_t k) { return k * 0x9E3779B97F4A7C15ull; }
+
+template <int D>
+struct Level {
+  std::array<double, D> s{};        // cell side per axis (equal unless fitted to a periodic box)
+  std::array<std::int64_t, D> n{};  // cells per axis
+  double s_min = 0;                 // smallest side: the insertion threshold for diameters
+  bool dense = true;
+  bool small_periodic = false;      // some periodic axis has fewer than 3 cells
+  std::uint64_t bucket_base = 0;    // first bucket of this level in the directory
+  std::uint64_t buckets = 0;        // number of buckets (cells if dense, table slots if not)
+  std::uint64_t key_base = 0;       // sparse: first slot of its table in the key array
+  int shift = 64;                   // sparse: 64 - log2(table size)
+
+  std::uint64_t cells() const {
+    std::uint64_t c = 1;
+    for (int k = 0; k < D; ++k) c *= static_cast<std::uint64_t>(n[k]);
+    return c;
+  }
+  std::uint64_t key(const std::array<std::int64_t, D>& c) const {
+    std::uint64_t k = static_cast<std::uint64_t>(c[D - 1]);
+    for (int a = D - 2; a >= 0; --a) k = k * static_cast<std::uint64_t>(n[a]) + static_cast<std::uint64_t>(c[a]);
+    return k;
+  }
+  std::array<std::int64_t, D> coords(std::uint64_t key) const {
+    std::array<std::int64_t, D> c{};
+    for (int a = 0; a < D; ++a) {
+      c[a] = static_cast<std::int64_t>(key % static_cast<std::uint64_t>(n[a]));
+      key /= static_cast<std::uint64_t>(n[a]);
+    }
+    return c;
+  }
+  /// Mapping M(x, h) of MODEL.md section 1, clamped to the grid so that points
+  /// on the far box face (walls) or rounded up to A (periodic) stay inside.
+  std::int64_t cell_1d(double x, int a) const {
+    const double c = std::floor(x / s[a]);
+    if (!(c > 0)) return 0;
+    if (c >= static_cast<double>(n[a])) return n[a] - 1;
+    return static_cast<std::int64_t>(c);
+  }
+  std::array<std::int64_t, D> cell(const std::array<double, D>& x) const {
+    std::array<std::int64_t, D> c{};
+    for (int a = 0; a < D; ++a) c[a] = cell_1d(x[a], a);
+    return c;
+  }
+};
+
+/// Lays out the levels for a box: fits periodic cells to the box (an integer
+/// number of cells per axis, each at least the requested size unless the box
+/// itself is smaller), and checks the cell count per axis.
+template <int D>
+std::vector<Level<D>> make_levels(const std::vector<double>& sizes, const Extent<D>& box, Boundary b) {
+  std::vector<Level<D>> levels(sizes.size());
+  for (std::size_t h = 0; h < sizes.size(); ++h) {
+    Level<D>& L = levels[h];
+    L.s_min = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < D; ++a) {
+      const double ratio = box[a] / sizes[h];
+      if (ratio > static_cast<double>(kMaxCellsPerAxis))
+        throw InputError("sizes", "level " + std::to_string(h + 1) + " would have " + std::to_string(ratio) +
+                                      " cells per axis (at most " + std::to_string(kMaxCellsPerAxis) +
+                                      " allowed); use larger cells");
+      if (b == Boundary::periodic) {
+        L.n[a] = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::floor(ratio)));
+        L.s[a] = box[a] / static_cast<double>(L.n[a]);
+        if (L.n[a] < 3) L.small_periodic = true;
+      } else {
+        L.n[a] = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(ratio)));
+        L.s[a] = sizes[h];
+      }
+      L.s_min = std::min(L.s_min, L.s[a]);
+    }
+  }
+  return levels;
+}
+
+}  // namespace hgrid::detail

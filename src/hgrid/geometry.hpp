@@ -1,0 +1,60 @@
+// Spheres, boxes and boundaries: the vocabulary shared by every search structure.
+#pragma once
+#include <array>
+#include <cmath>
+
+namespace hgrid {
+
+/// A d-sphere (a disk for D = 2): centre and radius.
+template <int D>
+struct Sphere {
+  std::array<double, D> x;
+  double r;
+};
+
+enum class Boundary { walls, periodic };
+
+inline const char* to_string(Boundary b) { return b == Boundary::walls ? "walls" : "periodic"; }
+
+/// Axis-aligned box [0, side_k) per axis. With walls, centres must lie in
+/// [0, side_k]; with periodic boundaries they are wrapped into [0, side_k).
+template <int D>
+using Extent = std::array<double, D>;
+
+namespace detail {
+
+/// Wraps a coordinate into [0, a) (periodic boundary).
+inline double wrap(double x, double a) {
+  x -= a * std::floor(x / a);
+  return x >= a ? 0.0 : x;  // a tiny negative x can round up to a
+}
+
+/// Minimum-image displacement along one periodic axis, for |dx| < a.
+inline double min_image(double dx, double a) {
+  if (dx > 0.5 * a) return dx - a;
+  if (dx < -0.5 * a) return dx + a;
+  return dx;
+}
+
+/// Squared centre distance; periodic axes use the minimum image.
+template <int D, Boundary B>
+inline double dist2(const std::array<double, D>& a, const std::array<double, D>& b,
+                    const Extent<D>& box) {
+  double s = 0.0;
+  for (int k = 0; k < D; ++k) {
+    double dx = b[k] - a[k];
+    if constexpr (B == Boundary::periodic) dx = min_image(dx, box[k]);
+    s += dx * dx;
+  }
+  return s;
+}
+
+/// The narrow-phase test: strictly overlapping bounding spheres.
+template <int D, Boundary B>
+inline bool overlap(const Sphere<D>& p, const Sphere<D>& q, const Extent<D>& box) {
+  const double rs = p.r + q.r;
+  return dist2<D, B>(p.x, q.x, box) < rs * rs;
+}
+
+}  // namespace detail
+}  // namespace hgrid

@@ -1,0 +1,86 @@
+// Seeded test packings and pair-set helpers shared by the tests.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <utility>
+#include <vector>
+
+#include "hgrid/brute_force.hpp"
+#include "hgrid/hgrid.hpp"
+
+namespace hgrid::test {
+
+using Pair = std::pair<std::uint32_t, std::uint32_t>;
+
+/// Radius from a truncated power law r^alpha on [1, omega] by inverse CDF.
+inline double power_law_radius(double u, double alpha, double omega) {
+  if (omega == 1.0) return 1.0;
+  const double e = alpha + 1.0;
+  if (std::abs(e) < 1e-12) return std::pow(omega, u);
+  return std::pow(1.0 + u * (std::pow(omega, e) - 1.0), 1.0 / e);
+}
+
+template <int D>
+struct Scene {
+  std::vector<Sphere<D>> spheres;
+  Extent<D> box;
+};
+
+/// N random centres (walls: each at least its radius from every wall, when the
+/// box allows), radii from the power law, box sized for packing fraction nu.
+template <int D>
+Scene<D> random_scene(std::size_t n, double nu, double alpha, double omega, Boundary b, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Scene<D> s;
+  double vol = 0;
+  const double vd = D == 2 ? M_PI : 4.0 * M_PI / 3.0;
+  s.spheres.resize(n);
+  for (auto& p : s.spheres) {
+    p.r = power_law_radius(u(rng), alpha, omega);
+    vol += vd * std::pow(p.r, D);
+  }
+  const double side = n ? std::pow(vol / nu, 1.0 / D) : 10.0;
+  for (int a = 0; a < D; ++a) s.box[a] = side * (1.0 + 0.1 * a);  // not cubic on purpose
+  for (auto& p : s.spheres)
+    for (int a = 0; a < D; ++a) {
+      const double lo = b == Boundary::walls ? std::min(p.r, 0.5 * s.box[a]) : 0.0;
+      p.x[a] = lo + u(rng) * (s.box[a] - 2 * lo);
+    }
+  return s;
+}
+
+/// Sizes s_h = 2 r_min omega^(h/L) (exponential), the last set to 2 r_max.
+inline std::vector<double> exponential_sizes(int L, double r_min, double r_max) {
+  std::vector<double> s;
+  for (int h = 1; h <= L; ++h) s.push_back(2 * r_min * std::pow(r_max / r_min, double(h) / L));
+  s.back() = 2 * r_max;
+  if (L > 1 && r_max == r_min)  // monodisperse: still strictly increasing
+    for (int h = 0; h < L; ++h) s[h] = 2 * r_max * (1.0 + h);
+  return s;
+}
+
+template <int D, Boundary B>
+std::vector<Pair> brute_pairs(const Scene<D>& s) {
+  std::vector<Pair> out;
+  brute_force_pairs<D, B>(std::span<const Sphere<D>>(s.spheres), s.box, [&](std::uint32_t i, std::uint32_t j) {
+    out.emplace_back(i, j);
+  });
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+/// HGrid pairs in the order found (NOT deduplicated: duplicates must show).
+template <int D, Boundary B, Search S, class Count = Uncounted>
+std::pair<std::vector<Pair>, Counters> grid_pairs(const Scene<D>& s, const std::vector<double>& sizes) {
+  GridParams g{sizes, S};
+  const HGrid<D, B> grid(std::span<const Sphere<D>>(s.spheres), s.box, g);
+  std::vector<Pair> out;
+  const Counters c = grid.template query<S, Count>([&](std::uint32_t i, std::uint32_t j) { out.emplace_back(i, j); });
+  std::sort(out.begin(), out.end());
+  return {out, c};
+}
+
+}  // namespace hgrid::test

@@ -1,0 +1,175 @@
+// Packing files (HDF5, CSV) and the `hgrid pairs` / `hgrid count` commands end to end.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "hgrid/error.hpp"
+#include "hgrid/packing.hpp"
+#include "support.hpp"
+
+namespace hgrid::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int status;
+  std::string out;
+  std::string err;
+};
+
+/// Runs the hgrid binary with the given arguments; stdout and stderr captured.
+Result hgrid_run(const std::string& args) {
+  static int counter = 0;
+  const fs::path err = fs::temp_directory_path() / ("hgrid_test_err_" + std::to_string(::getpid()) + "_" +
+                                                    std::to_string(counter++));
+  const std::string cmd = std::string(HGRID_BINARY) + " " + args + " 2>" + err.string();
+  Result r{};
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  std::array<char, 4096> buf;
+  std::size_t n;
+  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
+  const int st = ::pclose(pipe);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  std::ifstream e(err);
+  r.err.assign(std::istreambuf_iterator<char>(e), {});
+  fs::remove(err);
+  return r;
+}
+
+class TempDir : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("hgridlab_" + std::to_string(::getpid()) + "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  fs::path dir_;
+};
+
+Packing packing_from(const Scene<3>& s, Boundary b) {
+  Packing p;
+  p.d = 3;
+  p.boundary = b;
+  for (int a = 0; a < 3; ++a) p.box[a] = s.box[a];
+  for (const auto& q : s.spheres) {
+    for (int a = 0; a < 3; ++a) p.positions.push_back(q.x[a]);
+    p.radii.push_back(q.r);
+  }
+  return p;
+}
+
+using PackingFiles = TempDir;
+
+TEST_F(PackingFiles, Hdf5RoundTrip) {
+  auto p = packing_from(random_scene<3>(500, 0.3, -3, 10, Boundary::walls, 5), Boundary::walls);
+  p.num_attrs["seed"] = 5;
+  p.str_attrs["placement"] = "random";
+  write_packing(path("a.h5"), p);
+  const Packing q = read_packing(path("a.h5"));
+  EXPECT_EQ(q.d, 3);
+  EXPECT_EQ(q.boundary, Boundary::walls);
+  EXPECT_EQ(q.positions, p.positions);  // bit for bit
+  EXPECT_EQ(q.radii, p.radii);
+  EXPECT_EQ(q.num_attrs.at("seed"), 5);
+  EXPECT_EQ(q.str_attrs.at("placement"), "random");
+  EXPECT_EQ(q.str_attrs.at("git_hash"), git_hash());
+  for (const auto& e : fs::directory_iterator(dir_)) EXPECT_EQ(e.path().filename(), "a.h5");  // no temp left
+}
+
+TEST_F(PackingFiles, TruncatedHdf5IsRejected) {
+  auto p = packing_from(random_scene<3>(2000, 0.3, -3, 10, Boundary::walls, 6), Boundary::walls);
+  write_packing(path("a.h5"), p);
+  fs::resize_file(path("a.h5"), fs::file_size(path("a.h5")) / 2);
+  EXPECT_THROW(read_packing(path("a.h5")), InputError);
+  std::ofstream(path("junk.h5")) << "not hdf5";
+  EXPECT_THROW(read_packing(path("junk.h5")), InputError);
+  EXPECT_THROW(read_packing(path("missing.h5")), InputError);
+}
+
+TEST_F(PackingFiles, Csv) {
+  std::ofstream(path("p.csv")) << "# my particles\n# box 10 12\n# boundary periodic\nx,y,r\n1,2,0.5\n-1,13,0.25\n";
+  const Packing p = read_packing(path("p.csv"));
+  EXPECT_EQ(p.d, 2);
+  EXPECT_EQ(p.boundary, Boundary::periodic);
+  ASSERT_EQ(p.size(), 2u);
+  EXPECT_DOUBLE_EQ(p.positions[2], 9.0);  // wrapped into [0, A)
+  EXPECT_DOUBLE_EQ(p.positions[3], 1.0);
+  std::ofstream(path("nobox.csv")) << "x,y,r\n1,2,0.5\n";
+  EXPECT_THROW(read_packing(path("nobox.csv")), InputError);
+  std::ofstream(path("bad.csv")) << "# box 10 10\n# boundary walls\nx,y,r\n1,2,abc\n";
+  EXPECT_THROW(read_packing(path("bad.csv")), InputError);
+  std::ofstream(path("out.csv")) << "# box 10 10\n# boundary walls\nx,y,r\n11,2,1\n";
+  EXPECT_THROW(read_packing(path("out.csv")), InputError);
+  std::ofstream(path("neg.csv")) << "# box 10 10\n# boundary walls\nx,y,r\n1,2,-1\n";
+  EXPECT_THROW(read_packing(path("neg.csv")), InputError);
+  std::ofstream(path("nan.csv")) << "# box 10 10\n# boundary walls\nx,y,r\nnan,2,1\n";
+  EXPECT_THROW(read_packing(path("nan.csv")), InputError);
+}
+
+using Cli = TempDir;
+
+TEST_F(Cli, PairsEqualBruteForce) {
+  const auto s = random_scene<3>(3000, 0.5, -3, 30, Boundary::periodic, 11);
+  write_packing(path("p.h5"), packing_from(s, Boundary::periodic));
+  const Result grid = hgrid_run("pairs " + path("p.h5") + " --sizes 3,10,60.001 --search bottomup");
+  const Result brute = hgrid_run("pairs " + path("p.h5") + " --brute");
+  ASSERT_EQ(grid.status, 0) << grid.err;
+  ASSERT_EQ(brute.status, 0) << brute.err;
+  auto lines = [](const std::string& t) {
+    std::vector<std::string> v;
+    std::istringstream ss(t);
+    for (std::string l; std::getline(ss, l);) v.push_back(l);
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  EXPECT_GT(lines(brute.out).size(), 100u);
+  EXPECT_EQ(lines(grid.out), lines(brute.out));
+}
+
+TEST_F(Cli, CountJson) {
+  std::ofstream(path("p.csv")) << "# box 4 4\n# boundary walls\nx,y,r\n0.5,0.5,0.5\n1.4,0.5,0.5\n2.5,0.5,0.5\n2.5,2.5,0.5\n";
+  const Result r = hgrid_run("count " + path("p.csv") + " --sizes 2 --json --K 0.5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["n"], 4);
+  EXPECT_EQ(j["cell_accesses"], 11);  // as worked out in test_hgrid_cases.cpp
+  EXPECT_EQ(j["narrow_phase_checks"], 6);
+  EXPECT_EQ(j["contacts"], 1);
+  EXPECT_DOUBLE_EQ(j["T_over_N"].get<double>(), (6 + 0.5 * 11) / 4.0);
+  EXPECT_EQ(j["sizes"].size(), 1u);
+  EXPECT_EQ(j["per_level"][0]["particles"], 4);
+}
+
+TEST_F(Cli, BadInputExitsWithStatus2) {
+  std::ofstream(path("p.csv")) << "# box 4 4\n# boundary walls\nx,y,r\n0.5,0.5,0.5\n";
+  std::ofstream(path("neg.csv")) << "# box 4 4\n# boundary walls\nx,y,r\n0.5,0.5,-0.5\n";
+  const std::pair<std::string, std::string> cases[] = {
+      {"count " + path("p.csv") + " --sizes 2,1", "sizes"},
+      {"count " + path("p.csv") + " --sizes 0.5", "sizes"},
+      {"count " + path("p.csv") + " --sizes 2,abc", "sizes"},
+      {"count " + path("p.csv") + " --sizes 2 --search sideways", "search"},
+      {"count " + path("neg.csv") + " --sizes 2", "radius"},
+      {"count " + path("nothere.h5") + " --sizes 2", "file"},
+      {"count " + path("p.csv"), "sizes"},
+      {"pairs " + path("p.csv") + " --sizes 2 --bogus", "bogus"},
+  };
+  for (const auto& [args, word] : cases) {
+    const Result r = hgrid_run(args);
+    EXPECT_EQ(r.status, 2) << args;
+    EXPECT_NE(r.err.find(word), std::string::npos) << args << " -> " << r.err;
+    EXPECT_TRUE(r.out.empty()) << args;
+  }
+  EXPECT_EQ(hgrid_run("count --help").status, 0);
+  EXPECT_EQ(hgrid_run("pairs --help").status, 0);
+}
+
+}  // namespace
+}  // namespace hgrid::test
