@@ -2,6 +2,7 @@
 // a value type built from a span of spheres, a box and one params struct.
 #pragma once
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -61,6 +62,7 @@ class HGrid {
   std::size_t memory_bytes() const {
     return sorted_.capacity() * sizeof(Sphere<D>) + id_.capacity() * sizeof(std::uint32_t) +
            start_.capacity() * sizeof(std::uint32_t) + keys_.capacity() * sizeof(std::uint64_t) +
+           words_.capacity() * sizeof(std::uint64_t) + rank_.capacity() * sizeof(std::uint32_t) +
            levels_.capacity() * sizeof(detail::Level<D>);
   }
 
@@ -68,7 +70,13 @@ class HGrid {
   using Coords = std::array<std::int64_t, D>;
 
   std::uint64_t bucket(const detail::Level<D>& L, std::uint64_t key) const {
-    if (L.dense) return L.bucket_base + key;
+    if (L.ranked) {
+      const std::uint64_t w = L.word_base + (key >> 6);
+      const std::uint64_t bit = std::uint64_t{1} << (key & 63);
+      const std::uint64_t word = words_[w];
+      if (!(word & bit)) return detail::kNoBucket;
+      return L.bucket_base + rank_[w] + static_cast<std::uint64_t>(std::popcount(word & (bit - 1)));
+    }
     const std::uint64_t mask = L.buckets - 1;
     std::uint64_t slot = detail::hash_key(key) >> L.shift;
     for (;;) {
@@ -89,6 +97,36 @@ class HGrid {
         return L.bucket_base + slot;
       }
       slot = (slot + 1) & mask;
+    }
+  }
+  /// Calls f(bucket, cell key) for every non-empty cell of level L, in bucket order.
+  template <class F>
+  void for_each_cell(const detail::Level<D>& L, F&& f) const {
+    if (L.ranked) {
+      std::uint64_t b = L.bucket_base;
+      for (std::uint64_t w = 0; w < L.words; ++w)
+        for (std::uint64_t bits = words_[L.word_base + w]; bits; bits &= bits - 1)
+          f(b++, (w << 6) | static_cast<std::uint64_t>(std::countr_zero(bits)));
+      return;
+    }
+    for (std::uint64_t k = 0; k < L.buckets; ++k) {
+      const std::uint64_t b = L.bucket_base + k;
+      if (start_[b] != start_[b + 1]) f(b, keys_[L.key_base + k]);
+    }
+  }
+  /// Calls g(bucket) for each non-empty cell with key in [key, key + len) of a ranked level.
+  template <class G>
+  void scan_row(const detail::Level<D>& L, std::uint64_t key, std::uint64_t len, G& g) const {
+    const std::uint64_t end = key + len;
+    for (std::uint64_t w = key >> 6; (w << 6) < end; ++w) {
+      std::uint64_t bits = words_[L.word_base + w];
+      const std::uint64_t lo = w << 6;
+      if (key > lo) bits &= ~std::uint64_t{0} << (key - lo);
+      if (end < lo + 64) bits &= (std::uint64_t{1} << (end - lo)) - 1;
+      for (; bits; bits &= bits - 1) {
+        const std::uint64_t below = words_[L.word_base + w] & ((bits & (~bits + 1)) - 1);
+        g(L.bucket_base + rank_[L.word_base + w] + static_cast<std::uint64_t>(std::popcount(below)));
+      }
     }
   }
   /// Content of the cell with the given coordinates at level L: [begin, end).
@@ -116,7 +154,9 @@ class HGrid {
   std::vector<Sphere<D>> sorted_;        // particles sorted by (level, cell)
   std::vector<std::uint32_t> id_;        // input index of each sorted particle
   std::vector<std::uint32_t> start_;     // bucket -> first sorted particle; one past the last bucket too
-  std::vector<std::uint64_t> keys_;      // cell keys of the sparse levels' hash tables
+  std::vector<std::uint64_t> keys_;      // cell keys of the hashed levels' tables
+  std::vector<std::uint64_t> words_;     // ranked levels: one bit per cell, set if non-empty
+  std::vector<std::uint32_t> rank_;      // ranked levels: set bits before each word (within its level)
   std::vector<std::uint32_t> level_begin_;  // first sorted particle of each level, plus N
 };
 
@@ -175,16 +215,17 @@ HGrid<D, B>::HGrid(std::span<const Sphere<D>> spheres, const Extent<D>& box, con
     tag[i] = static_cast<std::uint32_t>(h);
     ++per_level[h];
   }
-  // Directory layout: dense levels get one bucket per cell, sparse ones a table.
-  std::uint64_t buckets = 0, keys = 0;
+  // Directory layout: a rank directory per level, or a hash table if very sparse.
+  std::uint64_t words = 0, keys = 0;
   for (int h = 0; h < L; ++h) {
     auto& lv = levels_[h];
-    lv.bucket_base = buckets;
-    if (lv.cells() <= detail::kDenseCellsPerParticle * per_level[h] + 64) {
-      lv.dense = true;
-      lv.buckets = lv.cells();
+    const std::uint64_t cells = lv.cells();
+    lv.ranked = cells <= detail::kRankCellsPerParticle * per_level[h] + detail::kRankMinCells;
+    if (lv.ranked) {
+      lv.word_base = words;
+      lv.words = (cells + 63) / 64;
+      words += lv.words;
     } else {
-      lv.dense = false;
       std::uint64_t size = 16;
       int bits = 4;
       while (size < 2 * per_level[h]) size <<= 1, ++bits;
@@ -193,34 +234,55 @@ HGrid<D, B>::HGrid(std::span<const Sphere<D>> spheres, const Extent<D>& box, con
       lv.key_base = keys;
       keys += size;
     }
-    buckets += lv.buckets;
   }
-  if (buckets >= (std::uint64_t{1} << 32) - 1) throw InputError("sizes", "too many cells for one grid");
+  words_.assign(words, 0);
   keys_.assign(keys, detail::kEmptyKey);
 
-  // Pass 2: bucket of each particle; counting sort into the directory.
-  std::vector<std::uint32_t> count(buckets + 1, 0);
+  // Pass 2: cell of each particle; occupied bits / hash keys.
+  std::vector<Sphere<D>> wrapped(N);
+  std::vector<std::uint64_t> cell_key(N);
   for (std::size_t i = 0; i < N; ++i) {
     auto& lv = levels_[tag[i]];
     std::array<double, D> x = spheres[i].x;
     if constexpr (B == Boundary::periodic) {
       for (int a = 0; a < D; ++a) x[a] = detail::wrap(x[a], box[a]);
     }
-    sorted_[i] = Sphere<D>{x, spheres[i].r};  // unsorted for now; reused below
-    const std::uint64_t key = lv.key(lv.cell(x));
-    const std::uint64_t b = lv.dense ? lv.bucket_base + key : insert_key(lv, key);
+    wrapped[i] = Sphere<D>{x, spheres[i].r};
+    cell_key[i] = lv.key(lv.cell(x));
+    if (lv.ranked) words_[lv.word_base + (cell_key[i] >> 6)] |= std::uint64_t{1} << (cell_key[i] & 63);
+  }
+  // Ranks, then bucket bases: ranked levels have one bucket per non-empty cell.
+  rank_.assign(words, 0);
+  std::uint64_t buckets = 0;
+  for (int h = 0; h < L; ++h) {
+    auto& lv = levels_[h];
+    lv.bucket_base = buckets;
+    if (lv.ranked) {
+      std::uint32_t r = 0;
+      for (std::uint64_t w = 0; w < lv.words; ++w) {
+        rank_[lv.word_base + w] = r;
+        r += static_cast<std::uint32_t>(std::popcount(words_[lv.word_base + w]));
+      }
+      lv.buckets = r;
+    }
+    buckets += lv.buckets;
+  }
+  if (buckets >= (std::uint64_t{1} << 32) - 1) throw InputError("sizes", "too many cells for one grid");
+  // Counting sort of the particles into buckets (stable: input order within a cell).
+  std::vector<std::uint32_t> count(buckets + 1, 0);
+  for (std::size_t i = 0; i < N; ++i) {
+    auto& lv = levels_[tag[i]];
+    const std::uint64_t b = lv.ranked ? bucket(lv, cell_key[i]) : insert_key(lv, cell_key[i]);
     tag[i] = static_cast<std::uint32_t>(b);
     ++count[b + 1];
   }
+  cell_key = {};
   for (std::uint64_t b = 0; b < buckets; ++b) count[b + 1] += count[b];
   start_ = count;  // start_[b] = first particle of bucket b; start_[buckets] = N
-  std::vector<Sphere<D>> wrapped = std::move(sorted_);
-  sorted_.assign(N, Sphere<D>{});
-  for (std::size_t i = 0; i < N; ++i) {
-    const std::uint32_t dst = count[tag[i]]++;
-    sorted_[dst] = wrapped[i];
-    id_[dst] = static_cast<std::uint32_t>(i);
-  }
+  // Scatter the 4-byte ids, then gather the spheres in sorted order: random
+  // reads overlap in the memory system far better than random 32-byte writes.
+  for (std::size_t i = 0; i < N; ++i) id_[count[tag[i]]++] = static_cast<std::uint32_t>(i);
+  for (std::size_t k = 0; k < N; ++k) sorted_[k] = wrapped[id_[k]];
   level_begin_.resize(L + 1);
   for (int h = 0; h < L; ++h) level_begin_[h] = start_[levels_[h].bucket_base];
   level_begin_[L] = static_cast<std::uint32_t>(N);
@@ -274,6 +336,41 @@ void HGrid<D, B>::cross_level(std::uint32_t p, int h, int j, F& f, Counters& out
       ++checked;
       test<Count>(p, q, f, out);
     }
+  } else if (lv.ranked) {
+    // Rows along axis 0 are runs of consecutive keys: read the occupancy bits
+    // a word at a time and visit only the non-empty cells (an empty cell adds
+    // an access, counted above, and nothing else).
+    auto visit = [&](std::uint64_t b) {
+      const std::uint32_t qb = start_[b], qe = start_[b + 1];
+      checked += qe - qb;
+      for (std::uint32_t q = qb; q < qe; ++q) test<Count>(p, q, f, out);
+    };
+    const std::int64_t n0 = lv.n[0];
+    Coords c = lo;
+    for (;;) {
+      Coords w = c;
+      w[0] = 0;
+      if constexpr (B == Boundary::periodic) {
+        for (int a = 1; a < D; ++a)
+          if (wrap[a]) w[a] = c[a] < 0 ? c[a] + lv.n[a] : (c[a] >= lv.n[a] ? c[a] - lv.n[a] : c[a]);
+      }
+      const std::uint64_t row = lv.key(w);
+      if (lo[0] < 0) {  // only with wrap: [lo, hi] = [n + lo, n) + [0, hi]
+        scan_row(lv, row + static_cast<std::uint64_t>(n0 + lo[0]), static_cast<std::uint64_t>(-lo[0]), visit);
+        scan_row(lv, row, static_cast<std::uint64_t>(hi[0] + 1), visit);
+      } else if (hi[0] >= n0) {
+        scan_row(lv, row + static_cast<std::uint64_t>(lo[0]), static_cast<std::uint64_t>(n0 - lo[0]), visit);
+        scan_row(lv, row, static_cast<std::uint64_t>(hi[0] - n0 + 1), visit);
+      } else {
+        scan_row(lv, row + static_cast<std::uint64_t>(lo[0]), static_cast<std::uint64_t>(hi[0] - lo[0] + 1), visit);
+      }
+      int a = 1;
+      for (; a < D; ++a) {
+        if (++c[a] <= hi[a]) break;
+        c[a] = lo[a];
+      }
+      if (a == D) break;
+    }
   } else {
     Coords c = lo;
     for (;;) {
@@ -316,12 +413,11 @@ Counters HGrid<D, B>::query(F&& f) const {
   std::array<std::pair<std::uint32_t, std::uint32_t>, detail::kHalfStencil<D>> nb;
   for (int h = 0; h < L; ++h) {
     const auto& lv = levels_[h];
-    for (std::uint64_t k = 0; k < lv.buckets; ++k) {
-      const std::uint64_t b = lv.bucket_base + k;
+    detail::KeyWalk<D> walk(lv);
+    for_each_cell(lv, [&](std::uint64_t b, std::uint64_t key) {
       const std::uint32_t beg = start_[b], end = start_[b + 1];
-      if (beg == end) continue;
       // Same level (linked cell): the half stencil is shared by the cell's particles.
-      const Coords c = lv.coords(lv.dense ? k : keys_[lv.key_base + k]);
+      const Coords& c = walk.to(key);
       int n_nb = 0;
       std::uint64_t nb_particles = 0;
       detail::for_each_half_neighbour<D, B>(lv, c, [&](const Coords& nc) {
@@ -348,7 +444,7 @@ Counters HGrid<D, B>::query(F&& f) const {
           for (int j = h + 1; j < L; ++j) cross_level<Count>(p, h, j, f, out);
         }
       }
-    }
+    });
   }
   return out;
 }

@@ -17,10 +17,12 @@ inline constexpr std::uint64_t kEmptyKey = std::numeric_limits<std::uint64_t>::m
 inline constexpr std::uint64_t kNoBucket = std::numeric_limits<std::uint64_t>::max();
 /// Cells per axis are limited so that a cell key (linear index) fits 63 bits.
 inline constexpr std::int64_t kMaxCellsPerAxis = std::int64_t{1} << 21;
-/// A level is stored densely (one bucket per cell) while it has at most this
-/// many cells per particle on it (plus a small constant); otherwise its
-/// non-empty cells go into an open-addressing table of twice their number.
-inline constexpr std::uint64_t kDenseCellsPerParticle = 4;
+/// A level's non-empty cells are found through a rank directory (one bit per
+/// cell plus a prefix count per 64 cells: ~1.5 bits per cell) while it has at
+/// most this many cells per particle on it (plus a constant); sparser levels
+/// use an open-addressing table of twice their particle count.
+inline constexpr std::uint64_t kRankCellsPerParticle = 64;
+inline constexpr std::uint64_t kRankMinCells = 1 << 16;
 
 inline std::uint64_t hash_key(std::uint64_t k) { return k * 0x9E3779B97F4A7C15ull; }
 
@@ -29,12 +31,14 @@ struct Level {
   std::array<double, D> s{};        // cell side per axis (equal unless fitted to a periodic box)
   std::array<std::int64_t, D> n{};  // cells per axis
   double s_min = 0;                 // smallest side: the insertion threshold for diameters
-  bool dense = true;
+  bool ranked = true;               // rank directory (else hash table)
   bool small_periodic = false;      // some periodic axis has fewer than 3 cells
   std::uint64_t bucket_base = 0;    // first bucket of this level in the directory
-  std::uint64_t buckets = 0;        // number of buckets (cells if dense, table slots if not)
-  std::uint64_t key_base = 0;       // sparse: first slot of its table in the key array
-  int shift = 64;                   // sparse: 64 - log2(table size)
+  std::uint64_t buckets = 0;        // ranked: non-empty cells; hashed: table slots
+  std::uint64_t word_base = 0;      // ranked: first bitmap word of this level
+  std::uint64_t words = 0;          // ranked: bitmap words (cells / 64, rounded up)
+  std::uint64_t key_base = 0;       // hashed: first slot of its table in the key array
+  int shift = 64;                   // hashed: 64 - log2(table size)
 
   std::uint64_t cells() const {
     std::uint64_t c = 1;
@@ -67,6 +71,33 @@ struct Level {
     for (int a = 0; a < D; ++a) c[a] = cell_1d(x[a], a);
     return c;
   }
+};
+
+/// Coordinates of increasing cell keys without a division per key: steps
+/// along axis 0 and carries, falling back to division for long jumps.
+template <int D>
+class KeyWalk {
+ public:
+  explicit KeyWalk(const Level<D>& L) : L_(L) {}
+  const std::array<std::int64_t, D>& to(std::uint64_t key) {
+    const std::uint64_t delta = key - key_;
+    if (key < key_ || delta >= static_cast<std::uint64_t>(L_.n[0])) {
+      c_ = L_.coords(key);
+    } else {
+      c_[0] += static_cast<std::int64_t>(delta);
+      for (int a = 0; a + 1 < D && c_[a] >= L_.n[a]; ++a) {
+        c_[a] -= L_.n[a];
+        ++c_[a + 1];
+      }
+    }
+    key_ = key;
+    return c_;
+  }
+
+ private:
+  const Level<D>& L_;
+  std::uint64_t key_ = 0;
+  std::array<std::int64_t, D> c_{};
 };
 
 /// Lays out the levels for a box: fits periodic cells to the box (an integer
