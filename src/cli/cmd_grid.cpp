@@ -8,7 +8,7 @@
 #include <string>
 
 #include "cli/common.hpp"
-#include "cli/grid_sizes.hpp"
+#include "hgrid/packing_sizes.hpp"
 #include "hgrid/brute_force.hpp"
 #include "hgrid/dispatch.hpp"
 #include "hgrid/hgrid.hpp"

@@ -56,6 +56,16 @@ class HGrid {
     for (std::size_t h = 0; h < levels_.size(); ++h) out.push_back(level_begin_[h + 1] - level_begin_[h]);
     return out;
   }
+  /// Cells of level h (0-based) holding 0, 1, and 2 or more particles.
+  std::array<std::uint64_t, 3> occupancy(int h) const {
+    const auto& lv = levels_.at(h);
+    std::array<std::uint64_t, 3> out{lv.cells(), 0, 0};
+    for_each_cell(lv, [&](std::uint64_t b, std::uint64_t) {
+      --out[0];
+      ++out[start_[b + 1] - start_[b] >= 2 ? 2 : 1];
+    });
+    return out;
+  }
   const GridParams& params() const { return params_; }
   const Extent<D>& box() const { return box_; }
   /// Bytes held by the grid, including its sorted copy of the particles.
