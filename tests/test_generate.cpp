@@ -1,0 +1,198 @@
+// Packing generators: radius sample vs pdf, exact nu, overlaps, walls,
+// reproducibility, the cache, rcp estimates and rejected arguments.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+#include "hgrid/error.hpp"
+#include "hgrid/generate.hpp"
+#include "hgrid/rcp.hpp"
+
+namespace hgrid {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kNuTol = 1e-12;           // achieved nu, relative
+constexpr double kMinKsPvalue = 1e-3;      // goodness of fit of the radius sample
+constexpr double kRelaxedOverlapTol = 1e-4;  // growth + FIRE packings
+constexpr std::uint64_t kSeed = 20140901;
+
+PackingSpec spec(int d, std::size_t n, double nu, double alpha, double omega, Placement pl,
+                 Boundary b = Boundary::periodic, std::uint64_t seed = kSeed) {
+  PackingSpec s;
+  s.d = d;
+  s.n = n;
+  s.nu = nu;
+  s.alpha = alpha;
+  s.omega = omega;
+  s.placement = pl;
+  s.boundary = b;
+  s.seed = seed;
+  s.progress = false;
+  return s;
+}
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path p = fs::temp_directory_path() / ("hgrid_gen_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p;
+}
+
+TEST(Generate, RadiusSampleFitsPdf) {
+  for (auto [alpha, omega] : std::vector<std::pair<double, double>>{
+           {0, 10}, {-1, 10}, {-1, 100}, {-2, 3}, {-3, 100}, {-3, 1.001}, {0, 1.0001}}) {
+    SCOPED_TRACE("alpha " + std::to_string(alpha) + " omega " + std::to_string(omega) + " seed " +
+                 std::to_string(kSeed));
+    const auto s = spec(3, 20000, 0.3, alpha, omega, Placement::random);
+    const Packing p = generate_packing(s);
+    const auto dist = make_distribution(s);
+    const PackingQuality q = assess_packing(p, dist.get());
+    EXPECT_GT(q.ks_pvalue, kMinKsPvalue) << "KS distance " << q.ks_distance;
+    for (double r : p.radii) {
+      ASSERT_GE(r, 1.0);
+      ASSERT_LE(r, omega);
+    }
+  }
+  const Packing mono = generate_packing(spec(3, 100, 0.3, -3, 1, Placement::random));
+  for (double r : mono.radii) EXPECT_EQ(r, 1.0);
+}
+
+TEST(Generate, AchievedNuIsExact) {
+  for (auto pl : {Placement::random, Placement::excluded})
+    for (int d : {2, 3}) {
+      SCOPED_TRACE("d " + std::to_string(d) + " " + to_string(pl) + " seed " + std::to_string(kSeed));
+      const Packing p = generate_packing(spec(d, 3000, 0.45, -3, 10, pl));
+      EXPECT_NEAR(p.packing_fraction() / 0.45, 1.0, kNuTol);
+      EXPECT_NEAR(p.num_attrs.at("nu_achieved") / 0.45, 1.0, kNuTol);
+    }
+}
+
+TEST(Generate, SequentialAdditionHasNoOverlapAndRespectsWalls) {
+  for (auto b : {Boundary::periodic, Boundary::walls})
+    for (int d : {2, 3}) {
+      SCOPED_TRACE(std::string(to_string(b)) + " d " + std::to_string(d) + " seed " + std::to_string(kSeed));
+      const double nu = d == 2 ? 0.4 : 0.6;
+      const Packing p = generate_packing(spec(d, 4000, nu, -3, d == 2 ? 20 : 10, Placement::excluded, b));
+      EXPECT_EQ(p.str_attrs.at("method"), "rsa");
+      const PackingQuality q = assess_packing(p, nullptr);
+      EXPECT_EQ(q.max_rel_overlap, 0.0);
+      EXPECT_EQ(q.overlapping_pairs, 0u);
+      if (b == Boundary::walls)
+        for (std::size_t i = 0; i < p.size(); ++i)
+          for (int k = 0; k < d; ++k) {
+            EXPECT_GE(p.positions[i * d + k], p.radii[i]);
+            EXPECT_LE(p.positions[i * d + k], p.box[k] - p.radii[i]);
+          }
+    }
+}
+
+TEST(Generate, RandomPlacementKeepsCentresInsideWalls) {
+  const Packing p = generate_packing(spec(3, 5000, 0.3, 0, 10, Placement::random, Boundary::walls));
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_GE(p.positions[i * 3 + k], p.radii[i]);
+      EXPECT_LE(p.positions[i * 3 + k], p.box[k] - p.radii[i]);
+    }
+}
+
+TEST(Generate, GrowthReachesDenseEqualVolumeDistribution) {
+  // alpha = 0: sequential addition stalls well below 0.6; growth + FIRE finishes.
+  for (auto b : {Boundary::periodic, Boundary::walls}) {
+    SCOPED_TRACE(std::string(to_string(b)) + " seed " + std::to_string(kSeed));
+    const Packing p = generate_packing(spec(3, 1500, 0.6, 0, 4, Placement::excluded, b));
+    EXPECT_EQ(p.str_attrs.at("method"), "rsa+growth+fire");
+    EXPECT_NEAR(p.packing_fraction() / 0.6, 1.0, kNuTol);
+    const PackingQuality q = assess_packing(p, nullptr);
+    EXPECT_LE(q.max_rel_overlap, kRelaxedOverlapTol);
+  }
+}
+
+TEST(Generate, SameSeedSamePacking) {
+  // Same seed: identical datasets and attributes. (Byte-identical files also
+  // need HDF5's object modification times switched off in the writer.)
+  const fs::path dir = temp_dir("bits");
+  const auto s = spec(3, 2000, 0.5, -2, 10, Placement::excluded);
+  write_packing((dir / "a.h5").string(), generate_packing(s));
+  write_packing((dir / "b.h5").string(), generate_packing(s));
+  const Packing a = read_packing((dir / "a.h5").string()), b = read_packing((dir / "b.h5").string());
+  EXPECT_EQ(a.positions, b.positions);
+  EXPECT_EQ(a.radii, b.radii);
+  EXPECT_EQ(a.box, b.box);
+  EXPECT_EQ(a.num_attrs, b.num_attrs);
+  EXPECT_EQ(a.str_attrs, b.str_attrs);
+  auto other = s;
+  other.seed = kSeed + 1;
+  EXPECT_NE(generate_packing(other).positions, a.positions);
+  fs::remove_all(dir);
+}
+
+TEST(Generate, CacheGeneratesOnceAndChecksBeforeReuse) {
+  const fs::path dir = temp_dir("cache");
+  const auto s = spec(3, 1000, 0.4, -3, 10, Placement::excluded);
+  const std::string path = packing_cache_path(s, dir.string());
+  EXPECT_EQ(fs::path(path).parent_path(), dir);
+  EXPECT_EQ(fs::path(path).extension(), ".h5");
+  auto other = s;
+  other.seed += 1;
+  EXPECT_NE(packing_cache_path(other, dir.string()), path);
+  const Packing a = cached_packing(s, dir.string());
+  ASSERT_TRUE(fs::exists(path));
+  const auto written = fs::last_write_time(path);
+  const Packing b = cached_packing(s, dir.string());
+  EXPECT_EQ(fs::last_write_time(path), written);  // reused, not rewritten
+  EXPECT_EQ(a.positions, b.positions);
+  // A corrupt cache file is detected and replaced.
+  { std::ofstream(path, std::ios::trunc) << "not hdf5"; }
+  const Packing c = cached_packing(s, dir.string());
+  EXPECT_EQ(a.positions, c.positions);
+  fs::remove_all(dir);
+}
+
+TEST(Generate, RcpEstimate) {
+  EXPECT_NEAR(estimate_rcp(3, PowerLaw(-3, 1)), kMonoRcp3, 1e-9);
+  EXPECT_NEAR(estimate_rcp(2, PowerLaw(0, 1)), kMonoRcp2, 1e-9);
+  const double wide = estimate_rcp(3, PowerLaw(-3, 100));
+  EXPECT_GT(wide, 0.75);  // polydispersity packs denser ...
+  EXPECT_LT(wide, 0.95);  // ... but not space-filling
+  EXPECT_GE(estimate_rcp(3, PowerLaw(-3, 100)), estimate_rcp(3, PowerLaw(0, 100)));
+}
+
+TEST(Generate, BadArgumentsAreRejected) {
+  auto good = spec(3, 100, 0.3, -3, 10, Placement::random);
+  auto expect_field = [](PackingSpec s, const std::string& field) {
+    try {
+      generate_packing(s);
+      ADD_FAILURE() << "accepted a bad " << field;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.field(), field) << e.what();
+    }
+  };
+  auto s = good; s.d = 4; expect_field(s, "d");
+  s = good; s.n = 0; expect_field(s, "n");
+  s = good; s.nu = 1.2; expect_field(s, "nu");
+  s = good; s.nu = -0.1; expect_field(s, "nu");
+  s = good; s.omega = 0.5; expect_field(s, "omega");
+  s = good; s.dist = "gaussian"; expect_field(s, "dist");
+  s = good; s.dist = "lognormal"; s.sigma = 0; expect_field(s, "sigma");
+  EXPECT_THROW(parse_placement("grid"), InputError);
+  // Beyond jamming: refused up front with the estimate in the message, nothing generated.
+  s = spec(3, 1000, 0.9, 0, 10, Placement::excluded);
+  try {
+    generate_packing(s);
+    ADD_FAILURE() << "accepted nu = 0.9";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "nu");
+    EXPECT_NE(std::string(e.what()).find("highest reachable"), std::string::npos) << e.what();
+  }
+  // Too few particles for the box to hold the largest ones.
+  s = spec(3, 3, 0.5, 0, 10, Placement::excluded);
+  expect_field(s, "n");
+}
+
+}  // namespace
+}  // namespace hgrid
