@@ -28,8 +28,10 @@ test-asan:
 	cmake --build build-asan -j $(JOBS) --target hgrid_tests hgrid
 	cd build-asan && ctest --output-on-failure -j $(JOBS)
 
+# Figures 2-10 (cost model), then 11-12 (scenes on generated packings).
 figures: build
 	bash plots/make_figures.sh $(SCALE)
+	bash plots/experiments.sh $(SCALE)
 
 bench: build
 	@for b in $(BUILD)/bench_*; do echo "== $$b"; $$b --benchmark_counters_tabular=true || exit 1; done

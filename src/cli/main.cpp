@@ -38,6 +38,8 @@ int main(int argc, char** argv) {
   app.fallthrough(false);
   hgrid::cli::register_grid_commands(app);
   hgrid::cli::register_model_commands(app);
+  hgrid::cli::register_generate_commands(app);
+  hgrid::cli::register_run_commands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -249,16 +249,17 @@ HGrid<D, B>::HGrid(std::span<const Sphere<D>> spheres, const Extent<D>& box, con
   keys_.assign(keys, detail::kEmptyKey);
 
   // Pass 2: cell of each particle; occupied bits / hash keys.
-  std::vector<Sphere<D>> wrapped(N);
+  auto wrapped = [&](std::size_t i) {
+    Sphere<D> p = spheres[i];
+    if constexpr (B == Boundary::periodic) {
+      for (int a = 0; a < D; ++a) p.x[a] = detail::wrap(p.x[a], box[a]);
+    }
+    return p;
+  };
   std::vector<std::uint64_t> cell_key(N);
   for (std::size_t i = 0; i < N; ++i) {
     auto& lv = levels_[tag[i]];
-    std::array<double, D> x = spheres[i].x;
-    if constexpr (B == Boundary::periodic) {
-      for (int a = 0; a < D; ++a) x[a] = detail::wrap(x[a], box[a]);
-    }
-    wrapped[i] = Sphere<D>{x, spheres[i].r};
-    cell_key[i] = lv.key(lv.cell(x));
+    cell_key[i] = lv.key(lv.cell(wrapped(i).x));
     if (lv.ranked) words_[lv.word_base + (cell_key[i] >> 6)] |= std::uint64_t{1} << (cell_key[i] & 63);
   }
   // Ranks, then bucket bases: ranked levels have one bucket per non-empty cell.
@@ -292,7 +293,7 @@ HGrid<D, B>::HGrid(std::span<const Sphere<D>> spheres, const Extent<D>& box, con
   // Scatter the 4-byte ids, then gather the spheres in sorted order: random
   // reads overlap in the memory system far better than random 32-byte writes.
   for (std::size_t i = 0; i < N; ++i) id_[count[tag[i]]++] = static_cast<std::uint32_t>(i);
-  for (std::size_t k = 0; k < N; ++k) sorted_[k] = wrapped[id_[k]];
+  for (std::size_t k = 0; k < N; ++k) sorted_[k] = wrapped(id_[k]);
   level_begin_.resize(L + 1);
   for (int h = 0; h < L; ++h) level_begin_[h] = start_[levels_[h].bucket_base];
   level_begin_[L] = static_cast<std::uint32_t>(N);

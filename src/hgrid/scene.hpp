@@ -1,0 +1,48 @@
+// Scene files (TOML): one experiment, the packings it needs and what it records.
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hgrid/generate.hpp"
+#include "hgrid/params.hpp"
+
+namespace hgrid {
+
+/// How the grid of every point is set up.
+struct SceneGrid {
+  std::string cells = "optimal";  // linear|exponential|constant|optimal (cost model, packing's own radii)
+  std::optional<int> levels;      // fixed L, or the method's best L*
+  double q = 1.0;                 // ratio of particles per cell (constant method)
+  double K = 0.2;                 // cell access time / overlap test time
+  std::vector<Search> searches{Search::top_down};
+};
+
+/// What a scene records beyond the counts; nothing else is computed.
+struct SceneRecord {
+  bool model = true;       // evaluate the cost model for the sizes used
+  bool occupancy = false;  // share of lowest-level cells holding >= 2 particles
+};
+
+/// One unit of work: a packing and a search direction.
+struct ScenePoint {
+  PackingSpec packing;
+  Search search = Search::top_down;
+};
+
+struct Scene {
+  std::string name;
+  std::string description;
+  std::string scale;
+  std::string source;  // the TOML text, stored with the results
+  SceneGrid grid;
+  SceneRecord record;
+  std::vector<ScenePoint> points;  // the cartesian product of the packing lists
+};
+
+/// Reads a scene for one scale ("smoke", "default", "paper"): the base
+/// [packings] table with [scale.<name>.packings] keys replacing it. Unknown
+/// keys and out-of-range values throw InputError naming the key.
+Scene load_scene(const std::string& path, const std::string& scale);
+
+}  // namespace hgrid

@@ -1,0 +1,115 @@
+// CI regression on counted work: experiments/regression.toml must reproduce
+// the exact counts committed in results/baselines/regression.csv; and on
+// random-centre periodic packings the measured T/N must agree with the model
+// within a statistical tolerance derived from N.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "hgrid/distribution.hpp"
+#include "hgrid/experiment.hpp"
+#include "hgrid/model.hpp"
+
+namespace hgrid {
+namespace {
+
+namespace fs = std::filesystem;
+
+using Row = std::map<std::string, std::string>;
+
+std::vector<Row> read_csv(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<Row> rows;
+  std::vector<std::string> header;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
+    if (header.empty()) {
+      header = cells;
+      continue;
+    }
+    Row r;
+    for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i) r[header[i]] = cells[i];
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+/// Runs the regression scene once (into a temporary directory) for all tests here.
+const std::vector<PointResult>& regression_run() {
+  static const std::vector<PointResult> results = [] {
+    const fs::path dir = fs::temp_directory_path() / ("hgridlab_regression_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    RunOptions opt;
+    opt.results_dir = dir.string();
+    opt.packing_dir = (dir / "packings").string();
+    opt.jobs = 2;
+    opt.progress = false;
+    const Scene scene = load_scene(std::string(HGRID_SOURCE_DIR) + "/experiments/regression.toml", "default");
+    auto r = run_scene(scene, opt);
+    fs::copy_file(dir / "regression.csv", fs::temp_directory_path() / "hgridlab_regression_last.csv",
+                  fs::copy_options::overwrite_existing);
+    fs::remove_all(dir);
+    return r;
+  }();
+  return results;
+}
+
+// Counts must not change silently. To accept a deliberate change, regenerate
+// the baseline (see experiments/regression.toml) in the same commit and give
+// the reason in its message.
+TEST(Regression, ExactCountsMatchBaseline) {
+  const auto& results = regression_run();
+  const auto base = read_csv(std::string(HGRID_SOURCE_DIR) + "/results/baselines/regression.csv");
+  ASSERT_EQ(base.size(), results.size()) << "the scene and its baseline have different points";
+  const auto now = read_csv((fs::temp_directory_path() / "hgridlab_regression_last.csv").string());
+  ASSERT_EQ(now.size(), base.size());
+  for (std::size_t i = 0; i < base.size(); ++i) {
+    SCOPED_TRACE("row " + std::to_string(i + 1) + ": " + base[i].at("boundary") + " " + base[i].at("search") +
+                 " alpha=" + base[i].at("alpha") + " omega=" + base[i].at("omega") + " nu=" + base[i].at("nu"));
+    for (const char* col : {"boundary", "search", "alpha", "omega", "nu", "n", "seed", "levels", "sizes",
+                            "cell_accesses", "narrow_phase_checks", "contacts"})
+      EXPECT_EQ(now[i].at(col), base[i].at(col)) << col;
+  }
+}
+
+// Random centres in a periodic box are the model's own assumption, so the
+// measured T/N must agree with it up to sampling noise. The noise: with
+// Poisson cell occupancy (mean m), Var(checks) ~ E[checks] (1 + 2 m), so
+// sd(T/N) ~ sqrt((1 + 2 m_max) T_cd/N) / sqrt(N). Allowed: kSigmas sd.
+// Top-Down only: Bottom-Up searches of a top level with fewer cells per axis
+// than its search box (small N, wide omega) see fewer cells than the model's
+// unbounded system (see paper_figs/README.md).
+TEST(Regression, RandomPeriodicMatchesModel) {
+  constexpr double kSigmas = 5.0;
+  int checked = 0;
+  for (const auto& r : regression_run()) {
+    const PackingSpec& s = r.point.packing;
+    if (s.boundary != Boundary::periodic || s.placement != Placement::random || r.point.search != Search::top_down)
+      continue;
+    // m_h of the population the sample was drawn from (only its size matters here).
+    const PowerLaw dist(s.alpha, s.omega);
+    std::vector<double> sizes = r.sizes;
+    sizes.back() = std::max(sizes.back(), 2 * dist.r_max());
+    const ModelResult m = evaluate_model(dist, ModelParams{s.d, s.nu, 0.2, r.point.search}, sizes);
+    double m_max = 0;
+    for (double v : m.m) m_max = std::max(m_max, v);
+    const double n = static_cast<double>(r.n);
+    const double sd = std::sqrt((1 + 2 * m_max) * r.model_T_cd_over_N / n);
+    SCOPED_TRACE(::testing::Message() << "alpha=" << s.alpha << " omega=" << s.omega << " nu=" << s.nu
+                                      << " seed=" << s.seed << " measured=" << r.T_over_N
+                                      << " model=" << r.model_T_over_N << " sd=" << sd);
+    EXPECT_LE(std::abs(r.T_over_N - r.model_T_over_N), kSigmas * sd);
+    ++checked;
+  }
+  EXPECT_GE(checked, 4);
+}
+
+}  // namespace
+}  // namespace hgrid

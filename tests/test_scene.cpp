@@ -1,0 +1,97 @@
+// Scene files: expansion, scale overrides, and rejected input naming the key.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "hgrid/error.hpp"
+#include "hgrid/scene.hpp"
+
+namespace hgrid {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string write_scene(const std::string& name, const std::string& text) {
+  const fs::path p = fs::temp_directory_path() / ("hgridlab_scene_" + std::to_string(::getpid()) + "_" + name + ".toml");
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+const char* kBase = R"(
+name = "t"
+[packings]
+n = [100, 200]
+nu = [0.1, 0.2, 0.3]
+alpha = -3
+omega = [10, 100]
+placement = ["random", "excluded"]
+[grid]
+search = ["topdown", "bottomup"]
+[scale.smoke.packings]
+n = 10
+nu = 0.5
+)";
+
+TEST(Scene, ExpandsTheProduct) {
+  const Scene s = load_scene(write_scene("base", kBase), "default");
+  EXPECT_EQ(s.points.size(), 2u * 3 * 2 * 2 * 2);
+  EXPECT_EQ(s.name, "t");
+  EXPECT_EQ(s.grid.cells, "optimal");
+  EXPECT_DOUBLE_EQ(s.grid.K, 0.2);
+  EXPECT_EQ(s.points[0].packing.d, 3);
+  EXPECT_EQ(s.points[0].packing.boundary, Boundary::periodic);
+}
+
+TEST(Scene, ScaleOverridesPackingKeys) {
+  const Scene s = load_scene(write_scene("smoke", kBase), "smoke");
+  ASSERT_EQ(s.points.size(), 1u * 1 * 2 * 2 * 2);
+  EXPECT_EQ(s.points[0].packing.n, 10u);
+  EXPECT_DOUBLE_EQ(s.points[0].packing.nu, 0.5);
+  // A scale the file does not mention is the base scene.
+  EXPECT_EQ(load_scene(write_scene("paper", kBase), "paper").points.size(), 48u);
+}
+
+void expect_error_naming(const std::string& text, const std::string& key, const std::string& scale = "default") {
+  try {
+    load_scene(write_scene("bad", text), scale);
+    ADD_FAILURE() << "accepted: " << text;
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+  }
+}
+
+TEST(Scene, RejectsBadInput) {
+  expect_error_naming("name = \"t\"\ncolour = 1\n[packings]\nn = 1\nnu = 0.1\n", "colour");
+  expect_error_naming("name = \"t\"\n[packings]\nn = 1\nnu = 0.1\nomgea = 3\n", "packings.omgea");
+  expect_error_naming("name = \"t\"\n[packings]\nn = 1\nnu = 0\n", "packings.nu");
+  expect_error_naming("name = \"t\"\n[packings]\nn = 1\nnu = 1.5\n", "packings.nu");
+  expect_error_naming("name = \"t\"\n[packings]\nn = 1\nnu = 0.1\nomega = 0.5\n", "packings.omega");
+  expect_error_naming("name = \"t\"\n[packings]\nn = 1\nnu = nan\n", "packings.nu");
+  expect_error_naming("name = \"t\"\n[packings]\nn = 0\nnu = 0.1\n", "packings.n");
+  expect_error_naming("name = \"t\"\n[packings]\nnu = 0.1\n", "packings.n");
+  expect_error_naming("name = \"t\"\n[packings]\nn = 1\nnu = 0.1\nplacement = \"lattice\"\n", "packings.placement");
+  expect_error_naming("name = \"t\"\n[packings]\nn = 1\nnu = 0.1\nboundary = \"open\"\n", "boundary");
+  expect_error_naming("name = \"t\"\n[packings]\nn = 1\nnu = 0.1\n[grid]\ncells = \"magic\"\n", "grid.cells");
+  expect_error_naming("name = \"t\"\n[packings]\nn = 1\nnu = 0.1\n[grid]\nsearch = \"sideways\"\n", "grid.search");
+  expect_error_naming("name = \"t\"\n[packings]\nn = 1\nnu = 0.1\n[grid]\nK = -1\n", "grid.K");
+  expect_error_naming("name = \"t\"\n[packings]\nn = 1\nnu = 0.1\n[record]\nvelocities = true\n", "record.velocities");
+  expect_error_naming("name = \"t\"\n[packings]\nn = 1\nnu = 0.1\n[scale.huge.packings]\nn = 2\n", "scale.huge");
+  expect_error_naming("name = \"t\"\n[packings]\nn = 1\nnu = 0.1\n", "scale", "huge");
+  expect_error_naming("name = \"t\"\n[packings\nn = 1\n", "scene");
+  expect_error_naming("[packings]\nn = 1\nnu = 0.1\n", "name");
+  expect_error_naming("name = \"a/b\"\n[packings]\nn = 1\nnu = 0.1\n", "name");
+}
+
+TEST(Scene, ShippedScenesLoad) {
+  for (const auto& e : fs::directory_iterator(fs::path(HGRID_SOURCE_DIR) / "experiments")) {
+    if (e.path().extension() != ".toml") continue;
+    for (const char* scale : {"smoke", "default", "paper"}) {
+      SCOPED_TRACE(e.path().string() + " " + scale);
+      EXPECT_NO_THROW(load_scene(e.path().string(), scale));
+    }
+  }
+}
+
+}  // namespace
+}  // namespace hgrid
