@@ -153,6 +153,24 @@ TEST(Generate, CacheGeneratesOnceAndChecksBeforeReuse) {
   fs::remove_all(dir);
 }
 
+TEST(Generate, EquilibrationKeepsRadiiNuAndZeroOverlap) {
+  for (auto b : {Boundary::periodic, Boundary::walls}) {
+    SCOPED_TRACE(std::string(to_string(b)) + " seed " + std::to_string(kSeed));
+    auto s = spec(3, 3000, 0.55, -3, 10, Placement::excluded, b);
+    const Packing before = generate_packing(s);
+    s.equilibrate = true;
+    const Packing after = generate_packing(s);
+    EXPECT_EQ(before.radii, after.radii);
+    EXPECT_NE(before.positions, after.positions);
+    EXPECT_NEAR(after.packing_fraction() / 0.55, 1.0, kNuTol);
+    EXPECT_EQ(assess_packing(after, nullptr).max_rel_overlap, 0.0);
+    EXPECT_GT(after.num_attrs.at("equilibration_acceptance"), 0.0);
+  }
+  auto s = spec(3, 100, 0.3, -3, 10, Placement::random);
+  s.equilibrate = true;
+  EXPECT_THROW(generate_packing(s), InputError);
+}
+
 TEST(Generate, RcpEstimate) {
   EXPECT_NEAR(estimate_rcp(3, PowerLaw(-3, 1)), kMonoRcp3, 1e-9);
   EXPECT_NEAR(estimate_rcp(2, PowerLaw(0, 1)), kMonoRcp2, 1e-9);

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "hgrid/detail/gen_common.hpp"
+#include "hgrid/detail/gen_equilibrate.hpp"
 #include "hgrid/detail/gen_relax.hpp"
 #include "hgrid/detail/gen_rsa.hpp"
 #include "hgrid/error.hpp"
@@ -35,6 +36,8 @@ void check_spec(const PackingSpec& s) {
   if (s.d != 2 && s.d != 3) throw InputError("d", "must be 2 or 3 (got " + std::to_string(s.d) + ")");
   if (s.n == 0 || s.n > 0x7fffffffu) throw InputError("n", "must be in [1, 2^31 - 1] (got " + std::to_string(s.n) + ")");
   if (!(std::isfinite(s.nu) && s.nu > 0 && s.nu < 1)) throw InputError("nu", "must be in (0, 1) (got " + num(s.nu) + ")");
+  if (s.equilibrate && s.placement != Placement::excluded)
+    throw InputError("equilibrate", "only applies to excluded-volume placement");
 }
 
 /// Radii (draw order) and the cubic box side for exactly spec.nu.
@@ -174,6 +177,11 @@ Packing generate_packing(const PackingSpec& s) {
   p.positions.assign(s.n * s.d, 0.0);
   if (s.placement == Placement::random) place_random(s, rng, p);
   else place_excluded(s, rcp, rng, p);
+  if (s.equilibrate) {
+    detail::Progress progress(s.progress, "hard-sphere Monte Carlo equilibration");
+    p.num_attrs["equilibration_acceptance"] = detail::equilibrate(s.d, s.boundary, p.box, p.radii, p.positions, rng, progress);
+    p.num_attrs["equilibration_sweeps"] = detail::kEquilibrationSweeps;
+  }
   if (s.boundary == Boundary::periodic)
     for (std::size_t i = 0; i < p.positions.size(); ++i) p.positions[i] = detail::wrap(p.positions[i], side);
   // Parameters, achieved nu, quality.
