@@ -1,6 +1,140 @@
-// Placeholder until the cost-model commands land (issue 3).
+// `hgrid model` (the analytic cost model for one distribution) and
+// `hgrid modelfigs` (the data behind the paper's Figs. 2-10).
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
 #include "cli/common.hpp"
+#include "hgrid/cell_sizes.hpp"
+#include "hgrid/detail/model_figs.hpp"
+#include "hgrid/error.hpp"
+#include "hgrid/packing.hpp"
 
 namespace hgrid::cli {
-void register_model_commands(CLI::App&) {}
+
+namespace {
+
+struct ModelOptions {
+  int d = 3;
+  double nu = 0.7, K = 0.2, alpha = -3.0, omega = 100.0, q = 1.0, sigma = 1.0;
+  std::string search = "topdown", cells = "optimal", dist = "powerlaw", radii_file;
+  int levels = 0;  // 0: search L*
+  bool json = false;
+};
+
+/// Radii from an HDF5 packing (.h5/.hdf5) or a text file: the last number
+/// of each non-empty line not starting with '#' (a plain list, or "x y z r").
+std::vector<double> read_radii(const std::string& path) {
+  const auto ends = [&](const std::string& suf) {
+    return path.size() >= suf.size() && path.compare(path.size() - suf.size(), suf.size(), suf) == 0;
+  };
+  if (ends(".h5") || ends(".hdf5")) return read_packing(path).radii;
+  std::ifstream in(path);
+  if (!in) throw InputError("radii", "cannot open '" + path + "'");
+  std::vector<double> out;
+  std::string line;
+  for (int no = 1; std::getline(in, line); ++no) {
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    std::istringstream ss(line);
+    double v = 0, last = 0;
+    int count = 0;
+    while (ss >> v) last = v, ++count;
+    if (count == 0 || !ss.eof())
+      throw InputError("radii", path + ":" + std::to_string(no) + ": expected numbers, the radius last");
+    out.push_back(last);
+  }
+  return out;
+}
+
+std::unique_ptr<Distribution> make_distribution(const ModelOptions& o) {
+  if (!o.radii_file.empty()) return std::make_unique<Empirical>(read_radii(o.radii_file));
+  if (o.dist == "powerlaw") return std::make_unique<PowerLaw>(o.alpha, o.omega);
+  if (o.dist == "lognormal") return std::make_unique<LogNormal>(LogNormal::centred(o.sigma, o.omega));
+  throw InputError("dist", "must be powerlaw or lognormal (got '" + o.dist + "')");
+}
+
+Search parse_search(const std::string& s) {
+  if (s == "topdown") return Search::top_down;
+  if (s == "bottomup") return Search::bottom_up;
+  throw InputError("search", "must be topdown or bottomup (got '" + s + "')");
+}
+
+void run_model(const ModelOptions& o) {
+  if (!std::isfinite(o.alpha)) throw InputError("alpha", "must be a finite number");
+  ModelParams p;
+  p.d = o.d;
+  p.nu = o.nu;
+  p.K = o.K;
+  p.search = parse_search(o.search);
+  validate(p);
+  const CellMethod method = parse_cell_method(o.cells);
+  const auto dist = make_distribution(o);
+  const auto choice = choose_cell_sizes(*dist, p, method,
+                                        o.levels > 0 ? std::optional<int>(o.levels) : std::nullopt, o.q);
+  std::vector<double> sizes;  // in units of r_min
+  for (double s : choice.sizes) sizes.push_back(s / dist->r_min());
+  const ModelResult& m = choice.model;
+  if (o.json) {
+    nlohmann::json j;
+    j["levels"] = choice.levels;
+    j["sizes"] = sizes;
+    j["T_over_N"] = m.T_over_N;
+    j["T_cd_over_N"] = m.T_cd_over_N;
+    j["T_ca_over_N"] = m.T_ca_over_N;
+    j["P"] = m.P;
+    j["m"] = m.m;
+    j["params"] = {{"d", p.d}, {"nu", p.nu}, {"K", p.K}, {"search", to_string(p.search)},
+                   {"cells", to_string(method)}, {"q", o.q}, {"omega", dist->omega()},
+                   {"dist", o.radii_file.empty() ? o.dist : "empirical"},
+                   {"levels_searched", o.levels == 0}};
+    if (o.radii_file.empty() && o.dist == "powerlaw") j["params"]["alpha"] = o.alpha;
+    if (o.radii_file.empty() && o.dist == "lognormal") j["params"]["sigma"] = o.sigma;
+    std::cout << j.dump(2) << "\n";
+    return;
+  }
+  std::printf("levels L = %d (%s)\nT/N = %.6f  (T_cd/N = %.6f, T_ca/N = %.6f, K = %g)\n", choice.levels,
+              o.levels == 0 ? "best L*" : "given", m.T_over_N, m.T_cd_over_N, m.T_ca_over_N, p.K);
+  std::printf("%5s %14s %12s %12s\n", "h", "s_h/r_min", "P_h", "m_h");
+  for (int h = 0; h < choice.levels; ++h)
+    std::printf("%5d %14.6g %12.6g %12.6g\n", h + 1, sizes[h], m.P[h], m.m[h]);
+}
+
+}  // namespace
+
+void register_model_commands(CLI::App& app) {
+  auto o = std::make_shared<ModelOptions>();
+  auto* sub = app.add_subcommand("model", "Analytic cost T/N and cell sizes (paper Sects. 3-5)");
+  sub->add_option("--d", o->d, "dimension, 2 or 3")->capture_default_str();
+  sub->add_option("--nu", o->nu, "packing fraction, > 0")->capture_default_str();
+  sub->add_option("--alpha", o->alpha, "power-law exponent of f(r) = C r^alpha")->capture_default_str();
+  sub->add_option("--omega", o->omega, "r_max / r_min, >= 1")->capture_default_str();
+  sub->add_option("--K", o->K, "cell-access time / overlap-test time, >= 0")->capture_default_str();
+  sub->add_option("--search", o->search, "topdown | bottomup")->capture_default_str();
+  sub->add_option("--cells", o->cells, "linear | exponential | constant | optimal")->capture_default_str();
+  auto* lv = sub->add_option("--levels", o->levels, "number of levels L >= 1 (default: search the best L*)");
+  sub->add_option("--q", o->q, "constant method: m_{h+1} / m_h, > 0")->capture_default_str();
+  sub->add_option("--dist", o->dist, "powerlaw | lognormal (centred in log r on [1, omega])")
+      ->capture_default_str();
+  sub->add_option("--sigma", o->sigma, "log-normal: standard deviation of ln r, > 0")->capture_default_str();
+  sub->add_option("--radii", o->radii_file,
+                  "use the radii of FILE instead (HDF5 packing, or text: last number per line)");
+  sub->add_flag("--json", o->json, "print JSON: levels, sizes (units of r_min), T_over_N, ...");
+  sub->callback([o, lv] {
+    if (lv->count() > 0 && o->levels < 1)
+      throw InputError("levels", "must be >= 1 (got " + std::to_string(o->levels) + ")");
+    run_model(*o);
+  });
+
+  auto f = std::make_shared<std::string>("results/model");
+  auto only = std::make_shared<std::string>();
+  auto* figs = app.add_subcommand("modelfigs", "Write the data of the paper's Figs. 2-10 (and 13) as CSV");
+  figs->add_option("--out", *f, "output directory")->capture_default_str();
+  figs->add_option("--only", *only, "comma-separated figure numbers, e.g. 4,9 (default: all)");
+  figs->callback([f, only] { detail::write_model_figures(*f, *only, std::cerr); });
+}
+
 }  // namespace hgrid::cli

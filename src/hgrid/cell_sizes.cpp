@@ -13,6 +13,7 @@ namespace hgrid {
 namespace {
 constexpr int kMaxLevels = 100000;     // accepted --levels
 constexpr int kSearchCap = 5000;       // the L* scan stops here at the latest
+constexpr int kConstantSearchCap = 256;  // ... and here for the constant method (shooting)
 constexpr int kFlatPatience = 3;       // optimal: stop after this many L without gain
 constexpr int kMinScan = 16;           // fixed methods: scan at least L = 1..16 ...
 constexpr double kScanFactor = 2.0;    // ... and up to 2 L_best + kScanExtra
@@ -176,7 +177,8 @@ SizeChoice choose_cell_sizes(const Distribution& dist, const ModelParams& p, Cel
   }
   int L_best = 1;
   double T_best = std::numeric_limits<double>::infinity();
-  for (int L = 1; L <= kSearchCap; ++L) {
+  const int cap = method == CellMethod::constant ? kConstantSearchCap : kSearchCap;
+  for (int L = 1; L <= cap; ++L) {
     if (L > kMinScan && L > kScanFactor * L_best + kScanExtra) break;
     const double T = cm.total(sizes_by(cm, method, L, q));
     if (T < T_best) T_best = T, L_best = L;

@@ -1,0 +1,12 @@
+# Fig. 13 (not in the paper): time to choose the sizes with L* against how far
+# T lies above the optimum; alpha = 0, -3 and omega = 10, 100, 1000, Top-Down.
+load 'plots/lib/style.gp'
+set logscale xy
+set format y '10^{%L}'
+set xlabel 'time to compute sizes and L^* [s]'
+set ylabel '(T - T_{opt}) / T_{opt}   (optimal: plotted at 10^{-12})'
+set title 'What accuracy costs in time (d = 3, {/Symbol n} = 0.7, K = 0.2)'
+set key top right
+f(y) = y > 1e-12 ? y : 1e-12
+plot for [i=0:3] d('fig13-accuracy-time.csv') u ($1 == i ? $4 : NaN):(f($6)) w p ls (i+1) ps 1.2 \
+     t word('Linear Exponential Constant Optimal', i+1)
