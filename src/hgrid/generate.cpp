@@ -198,11 +198,16 @@ Packing generate_packing(const PackingSpec& s) {
   p.num_attrs["equilibrate"] = s.equilibrate ? 1 : 0;
   p.num_attrs["generator_version"] = kGeneratorVersion;
   p.num_attrs["rcp_estimate"] = rcp;
-  const PackingQuality q = assess_packing(p, dist.get());
+  // Overlap figures only for excluded volume (random centres overlap anyway,
+  // and a contact search would cost more than the placement itself).
+  const bool excluded = s.placement == Placement::excluded;
+  const PackingQuality q = assess_packing(p, dist.get(), excluded);
   p.num_attrs["nu_achieved"] = q.nu;
-  p.num_attrs["max_rel_overlap"] = q.max_rel_overlap;
-  p.num_attrs["mean_rel_overlap"] = q.mean_rel_overlap;
-  p.num_attrs["mean_contacts"] = q.mean_contacts;
+  if (excluded) {
+    p.num_attrs["max_rel_overlap"] = q.max_rel_overlap;
+    p.num_attrs["mean_rel_overlap"] = q.mean_rel_overlap;
+    p.num_attrs["mean_contacts"] = q.mean_contacts;
+  }
   p.num_attrs["slab_max_dev"] = q.slab_max_dev;
   p.num_attrs["ks_distance"] = q.ks_distance;
   p.num_attrs["ks_pvalue"] = q.ks_pvalue;

@@ -88,8 +88,9 @@ struct PackingQuality {
   std::vector<double> hist_edges, hist_count, hist_expected;  // log-spaced radius bins
 };
 
-/// Overlaps, contacts, slab homogeneity and (with dist) the goodness of fit.
-PackingQuality assess_packing(const Packing& p, const Distribution* dist);
+/// Overlaps and contacts (unless pairs is false: they cost a contact search),
+/// slab homogeneity and (with dist) the goodness of fit of the radii.
+PackingQuality assess_packing(const Packing& p, const Distribution* dist, bool pairs = true);
 
 /// Distribution recorded in a packing's attributes (dist, alpha, omega,
 /// sigma), or nullptr if the file does not say.

@@ -147,10 +147,12 @@ void fit_figures(const Packing& p, const Distribution& dist, PackingQuality& q) 
 
 }  // namespace
 
-PackingQuality assess_packing(const Packing& p, const Distribution* dist) {
+PackingQuality assess_packing(const Packing& p, const Distribution* dist, bool pairs) {
   PackingQuality q;
   q.nu = p.packing_fraction();
-  if (p.d == 2)
+  if (!pairs) {
+    q.max_rel_overlap = q.mean_rel_overlap = q.mean_contacts = -1;
+  } else if (p.d == 2)
     p.boundary == Boundary::walls ? pair_figures<2, Boundary::walls>(p, q) : pair_figures<2, Boundary::periodic>(p, q);
   else
     p.boundary == Boundary::walls ? pair_figures<3, Boundary::walls>(p, q) : pair_figures<3, Boundary::periodic>(p, q);

@@ -1,0 +1,63 @@
+// Packing generation at the paper's scale (issue 7's targets), 3D periodic:
+//   random placement, N = 1e6                         (target <= 1 s)
+//   excluded volume, alpha = -3, omega = 100, nu = 0.6 (target <= 2 min, zero overlap)
+//   excluded volume, alpha = 0, omega = 10, nu = 0.6   (target <= 15 min, max rel. overlap <= 1e-4)
+// Run one at a time (the peak-memory counter is per process):
+//   build/bench_generate --benchmark_filter='Rsa/1000000/'
+#include <benchmark/benchmark.h>
+
+#include <fstream>
+#include <string>
+
+#include "hgrid/generate.hpp"
+
+namespace {
+
+using namespace hgrid;
+
+constexpr std::uint64_t kSeed = 2014;
+
+/// Peak resident memory of this process (VmHWM), bytes.
+double peak_rss_bytes() {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) * 1024.0;
+  return 0;
+}
+
+void run(benchmark::State& state, double alpha, double omega, Placement placement) {
+  PackingSpec s;
+  s.d = 3;
+  s.n = static_cast<std::size_t>(state.range(0));
+  s.nu = 0.6;
+  s.alpha = alpha;
+  s.omega = omega;
+  s.placement = placement;
+  s.seed = kSeed;
+  s.progress = false;
+  Packing p;
+  for (auto _ : state) p = generate_packing(s);
+  const PackingQuality q = assess_packing(p, make_distribution(s).get(), placement == Placement::excluded);
+  state.counters["nu"] = q.nu;
+  state.counters["max_rel_overlap"] = q.max_rel_overlap;
+  state.counters["mean_rel_overlap"] = q.mean_rel_overlap;
+  state.counters["slab_dev"] = q.slab_max_dev;
+  for (std::size_t b = 0; b < q.band_slab_max_dev.size(); ++b)
+    state.counters["band" + std::to_string(b) + "_slab_dev"] = q.band_slab_max_dev[b];
+  state.counters["ks_p"] = q.ks_pvalue;
+  state.counters["fire_steps"] = p.num_attrs.count("fire_steps") ? p.num_attrs.at("fire_steps") : 0.0;
+  state.counters["peak_bytes_per_particle"] = peak_rss_bytes() / static_cast<double>(s.n);
+}
+
+void BM_Random(benchmark::State& state) { run(state, -3, 100, Placement::random); }
+void BM_Rsa(benchmark::State& state) { run(state, -3, 100, Placement::excluded); }
+void BM_Growth(benchmark::State& state) { run(state, 0, 10, Placement::excluded); }
+
+BENCHMARK(BM_Random)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_Rsa)->Arg(100000)->Arg(1000000)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_Growth)->Arg(100000)->Arg(1000000)->Unit(benchmark::kSecond)->Iterations(1);
+
+}  // namespace
+
+BENCHMARK_MAIN();
