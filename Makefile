@@ -32,6 +32,7 @@ test-asan:
 figures: build
 	bash plots/make_figures.sh $(SCALE)
 	bash plots/experiments.sh $(SCALE)
+	if [ -f plots/dpm.sh ]; then bash plots/dpm.sh $(SCALE); fi
 
 bench: build
 	@for b in $(BUILD)/bench_*; do echo "== $$b"; $$b --benchmark_counters_tabular=true || exit 1; done

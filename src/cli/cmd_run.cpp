@@ -6,6 +6,7 @@
 
 #include "cli/common.hpp"
 #include "hgrid/detail/result_io.hpp"
+#include "hgrid/dpm/dpm_scene.hpp"
 #include "hgrid/error.hpp"
 #include "hgrid/experiment.hpp"
 
@@ -19,8 +20,12 @@ struct RunArgs {
 };
 
 void run(const RunArgs& a) {
-  const Scene scene = load_scene(a.scene, a.scale);
   if (a.opt.jobs < 1) throw InputError("jobs", "must be >= 1");
+  if (scene_kind(a.scene) == "dpm") {
+    dpm::run_dpm_scene(a.scene, a.scale, a.opt, a.json);
+    return;
+  }
+  const Scene scene = load_scene(a.scene, a.scale);
   std::cerr << "hgrid run: scene " << scene.name << " (" << a.scale << " scale): " << scene.points.size()
             << " points, " << a.opt.jobs << " job(s)\n";
   const auto results = run_scene(scene, a.opt);

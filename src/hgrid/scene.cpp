@@ -4,6 +4,8 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <tuple>
+#include <utility>
 #include <toml++/toml.h>
 
 #include "hgrid/error.hpp"
@@ -151,25 +153,38 @@ void read_record(const toml::table& t, SceneRecord& r) {
   }
 }
 
-}  // namespace
-
-Scene load_scene(const std::string& path, const std::string& scale) {
+/// The file's text and its parsed table; InputError("scene", ...) if unreadable.
+std::pair<std::string, toml::table> parse_scene_file(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError("scene", "cannot open '" + path + "'");
   std::stringstream buf;
   buf << in.rdbuf();
-  Scene s;
-  s.source = buf.str();
-  s.scale = scale;
-  toml::table root;
   try {
-    root = toml::parse(s.source, path);
+    return {buf.str(), toml::parse(buf.str(), path)};
   } catch (const toml::parse_error& e) {
     std::ostringstream msg;
     msg << e.description() << " at line " << e.source().begin.line;
     throw InputError("scene", msg.str() + " in " + path);
   }
-  check_keys(root, "", {"name", "description", "packings", "grid", "record", "scale"});
+}
+
+}  // namespace
+
+std::string scene_kind(const std::string& path) {
+  const auto [text, root] = parse_scene_file(path);
+  const std::string kind = root["kind"].value_or(std::string("contact"));
+  if (kind != "contact" && kind != "dpm") throw InputError("kind", "must be 'contact' or 'dpm' (got '" + kind + "')");
+  return kind;
+}
+
+Scene load_scene(const std::string& path, const std::string& scale) {
+  Scene s;
+  toml::table root;
+  std::tie(s.source, root) = parse_scene_file(path);
+  s.scale = scale;
+  check_keys(root, "", {"name", "description", "kind", "packings", "grid", "record", "scale"});
+  if (root["kind"].value_or(std::string("contact")) != "contact")
+    throw InputError("kind", "this scene is not a contact-search scene (kind = 'contact')");
   if (auto v = root["name"].value<std::string>()) s.name = *v;
   else throw InputError("name", "is required (a string naming the scene and its result files)");
   for (char c : s.name)

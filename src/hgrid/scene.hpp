@@ -40,6 +40,10 @@ struct Scene {
   std::vector<ScenePoint> points;  // the cartesian product of the packing lists
 };
 
+/// The scene's top-level `kind`: "contact" (default: one contact search per
+/// point, load_scene) or "dpm" (a discrete-element run, dpm/dpm_scene.hpp).
+std::string scene_kind(const std::string& path);
+
 /// Reads a scene for one scale ("smoke", "default", "paper"): the base
 /// [packings] table with [scale.<name>.packings] keys replacing it. Unknown
 /// keys and out-of-range values throw InputError naming the key.
