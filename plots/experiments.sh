@@ -14,15 +14,21 @@ for scene in fig11 fig12 occupancy; do
   "$hgrid" run "experiments/$scene.toml" --scale "$scale" --jobs "$jobs"
 done
 
-# plot SCRIPT CSV NAME: PNG and PDF, each written to a temporary name first.
+# values CSV COLUMN: the distinct values of a column, ascending, space separated.
+values() {
+  awk -F, -v col="$2" '/^#/ {next} !h {for (i = 1; i <= NF; i++) if ($i == col) c = i; h = 1; next}
+    {print $c + 0}' "$1" | sort -g -u | tr '\n' ' '
+}
+
+# plot SCRIPT CSV NAME SERIES: PNG and PDF, each written to a temporary name first.
 plot() {
-  local script=$1 csv=$2 name=$3
+  local script=$1 csv=$2 name=$3 series=$4
   for fmt in png pdf; do
     local out="paper_figs/$name$suffix.$fmt" tmp="paper_figs/.$name$suffix.tmp.$fmt"
-    gnuplot -e "in='$csv'; out='$tmp'; fmt='$fmt'; scale_label='$scale scale'" "$script"
+    gnuplot -e "in='$csv'; out='$tmp'; fmt='$fmt'; scale_label='$scale scale'; series='$series'" "$script"
     mv -f "$tmp" "$out"
   done
   echo "wrote paper_figs/$name$suffix.png and .pdf" >&2
 }
-plot plots/fig11.gp "results/fig11$suffix.csv" fig11-measured-vs-model-nu
-plot plots/fig12.gp "results/fig12$suffix.csv" fig12-measured-vs-model-n
+plot plots/fig11.gp "results/fig11$suffix.csv" fig11-measured-vs-model-nu "$(values "results/fig11$suffix.csv" omega)"
+plot plots/fig12.gp "results/fig12$suffix.csv" fig12-measured-vs-model-n "$(values "results/fig12$suffix.csv" alpha | tr ' ' '\n' | sort -gr | tr '\n' ' ')"

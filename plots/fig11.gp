@@ -14,7 +14,7 @@ set yrange [0:*]
 set grid
 set title sprintf('Fig. 11: {/Symbol a} = -3, d = 3, optimal Top-Down sizes (%s)', scale_label)
 sel(p, w, v) = (strcol("placement") eq p && abs(column("omega") - w) < 1e-9) ? v : NaN
-omegas = "2 10 50 100"
+omegas = exists("series") ? series : "2 10 50 100"
 plot for [i=1:words(omegas)] in using (sel("excluded", real(word(omegas,i)), column("nu"))):"model_T_over_N" \
        with lines lw 2 lc i title sprintf('model, {/Symbol w} = %s', word(omegas,i)), \
      for [i=1:words(omegas)] in using (sel("excluded", real(word(omegas,i)), column("nu"))):"T_over_N" \

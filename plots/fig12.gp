@@ -15,7 +15,7 @@ set yrange [0:*]
 set grid
 set title sprintf('Fig. 12: {/Symbol n} = 0.6, {/Symbol w} = 10, d = 3, optimal Top-Down sizes (%s)', scale_label)
 sel(b, a, v) = (strcol("boundary") eq b && abs(column("alpha") - a) < 1e-9) ? v : NaN
-alphas = "0 -1 -2 -3"
+alphas = exists("series") ? series : "0 -1 -2 -3"
 plot for [i=1:words(alphas)] in using (sel("periodic", real(word(alphas,i)), column("n"))):"model_T_over_N" \
        with lines lw 2 lc i title sprintf('model, {/Symbol a} = %s', word(alphas,i)), \
      for [i=1:words(alphas)] in using (sel("walls", real(word(alphas,i)), column("n"))):"T_over_N" \
