@@ -1,0 +1,182 @@
+// DPM engine: restitution of a resolved head-on collision, energy conservation
+// without dissipation, wall bounces, momentum in a periodic box, the time-step
+// check and the effect counters (switched-off effects do no work).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "hgrid/dpm/simulation.hpp"
+#include "hgrid/error.hpp"
+
+namespace hgrid::dpm {
+namespace {
+
+constexpr double kRestitutionTol = 1e-6;   // |e_measured - e_set|
+constexpr double kEnergyDriftTol = 1e-4;   // relative, 1e4 steps, e = 1
+constexpr double kMomentumTol = 1e-12;     // relative to sum m |v|
+constexpr double kWallRestitutionTol = 1e-4;
+constexpr std::uint64_t kSeed = 20140357;
+
+Packing make_packing(int d, Boundary b, std::array<double, 3> box, std::vector<double> pos, std::vector<double> radii) {
+  Packing p;
+  p.d = d;
+  p.boundary = b;
+  p.box = box;
+  p.positions = std::move(pos);
+  p.radii = std::move(radii);
+  return p;
+}
+
+DpmConfig base_config(int d, Boundary b, std::array<double, 3> box, double e, double dt_over_tc) {
+  DpmConfig c;
+  c.d = d;
+  c.boundary = b;
+  c.box = box;
+  c.contact_time = 1.0;
+  c.restitution = e;
+  c.dt = dt_over_tc;
+  c.sizes = {2.5};
+  return c;
+}
+
+// Two unit spheres approach head-on with relative speed 2; the initial gap is
+// closed at t = dt/2, so the contact starts (and, lasting t_c = n dt, ends) on
+// a half step where velocity Verlet's impulse cells begin and end.
+double head_on_restitution(int d, double e) {
+  const double dt = 1.0 / 2000, gap = 2.0 * dt / 2;
+  std::vector<double> pos(2 * d, 10.0), vel(2 * d, 0.0);
+  pos[0] = 10.0 - 1.0 - gap / 2;
+  pos[d] = 10.0 + 1.0 + gap / 2;
+  vel[0] = 1.0;
+  vel[d] = -1.0;
+  const auto p = make_packing(d, Boundary::walls, {20, 20, 20}, pos, {1.0, 1.0});
+  auto sim = make_simulation(base_config(d, Boundary::walls, {20, 20, 20}, e, dt), p, vel);
+  sim->run(2300);  // contact over after t_c = 2000 steps
+  const auto v = sim->velocities();
+  return (v[d] - v[0]) / 2.0;
+}
+
+TEST(Dpm, HeadOnCollisionGivesTheSetRestitution) {
+  for (int d : {2, 3})
+    for (double e : {0.5, 0.8, 0.95}) {
+      const double got = head_on_restitution(d, e);
+      EXPECT_NEAR(got, e, kRestitutionTol) << "d = " << d << ", e = " << e;
+    }
+}
+
+// Lattice of disks with random velocities in a periodic box.
+Packing gas(int d, int per_axis, double spacing, double r, std::vector<double>& vel, double speed, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-speed, speed);
+  std::vector<double> pos, radii;
+  const int n = d == 2 ? per_axis * per_axis : per_axis * per_axis * per_axis;
+  for (int i = 0; i < n; ++i) {
+    int rest = i;
+    for (int k = 0; k < d; ++k) {
+      pos.push_back((rest % per_axis + 0.5) * spacing);
+      rest /= per_axis;
+      vel.push_back(u(rng));
+    }
+    radii.push_back(i % 3 == 0 ? r : 0.6 * r);  // bidisperse
+  }
+  const double a = per_axis * spacing;
+  return make_packing(d, Boundary::periodic, {a, a, a}, pos, radii);
+}
+
+TEST(Dpm, ElasticGasConservesEnergy) {
+  std::vector<double> vel;
+  const auto p = gas(2, 10, 3.0, 1.0, vel, 0.2, kSeed);
+  SCOPED_TRACE("seed " + std::to_string(kSeed));
+  auto c = base_config(2, Boundary::periodic, p.box, 1.0, 1.0 / 50);
+  auto sim = make_simulation(c, p, vel);
+  const double e0 = sim->kinetic_energy() + sim->elastic_energy();
+  sim->run(10000);
+  const double e1 = sim->kinetic_energy() + sim->elastic_energy();
+  EXPECT_GT(sim->stats().pair_contacts, 1000u);  // the gas did collide
+  EXPECT_LT(std::abs(e1 - e0) / e0, kEnergyDriftTol);
+}
+
+TEST(Dpm, ParticleBouncesOffEveryWall) {
+  const double e = 0.8, dt = 1.0 / 200;
+  for (int d : {2, 3})
+    for (int axis = 0; axis < d; ++axis)
+      for (int side : {0, 1}) {
+        std::vector<double> pos(d, 5.0), vel(d, 0.0);
+        // Contact starts at t = dt/2 (see head_on_restitution).
+        pos[axis] = side == 0 ? 1.0 + 0.5 * dt : 9.0 - 0.5 * dt;
+        vel[axis] = side == 0 ? -1.0 : 1.0;
+        const auto p = make_packing(d, Boundary::walls, {10, 10, 10}, pos, {1.0});
+        auto sim = make_simulation(base_config(d, Boundary::walls, {10, 10, 10}, e, dt), p, vel);
+        sim->run(300);
+        const auto v = sim->velocities();
+        EXPECT_NEAR(v[axis], side == 0 ? e : -e, kWallRestitutionTol) << "d " << d << " axis " << axis << " side " << side;
+        EXPECT_GT(sim->stats().wall_contacts, 0u);
+      }
+}
+
+TEST(Dpm, PeriodicBoxConservesMomentum) {
+  for (int d : {2, 3})
+    for (bool friction : {false, true}) {
+      std::vector<double> vel;
+      const auto p = gas(d, d == 2 ? 8 : 4, 2.2, 1.0, vel, 0.5, kSeed + d);
+      SCOPED_TRACE("seed " + std::to_string(kSeed + d));
+      auto c = base_config(d, Boundary::periodic, p.box, 0.7, 1.0 / 20);
+      c.friction = friction;
+      auto sim = make_simulation(c, p, vel);
+      const auto p0 = sim->momentum();
+      double scale = 0;
+      for (std::size_t i = 0; i < p.size(); ++i)
+        for (int k = 0; k < d; ++k) scale += std::abs(vel[i * d + k]) * M_PI * p.radii[i] * p.radii[i];
+      sim->run(2000);
+      const auto p1 = sim->momentum();
+      EXPECT_GT(sim->stats().pair_contacts, 100u);
+      for (int k = 0; k < d; ++k) EXPECT_NEAR(p1[k], p0[k], kMomentumTol * scale) << "d " << d << " friction " << friction;
+    }
+}
+
+TEST(Dpm, TooLargeTimeStepIsRefused) {
+  const auto p = make_packing(2, Boundary::walls, {10, 10, 0}, {5, 5}, {1.0});
+  auto c = base_config(2, Boundary::walls, {10, 10, 0}, 0.8, 1.0 / kMinStepsPerContact);
+  EXPECT_NO_THROW(make_simulation(c, p, {}));
+  c.dt = 1.01 / kMinStepsPerContact;
+  try {
+    make_simulation(c, p, {});
+    FAIL() << "dt > t_c / " << kMinStepsPerContact << " accepted";
+  } catch (const InputError& err) {
+    EXPECT_EQ(err.field(), "dt");
+    EXPECT_NE(std::string(err.what()).find("contact_time"), std::string::npos);
+  }
+}
+
+TEST(Dpm, SwitchedOffEffectsDoNoWork) {
+  std::vector<double> vel;
+  const auto p = gas(2, 8, 2.2, 1.0, vel, 0.5, kSeed);
+  auto c = base_config(2, Boundary::periodic, p.box, 0.7, 1.0 / 20);
+  auto plain = make_simulation(c, p, vel);
+  plain->run(200);
+  EXPECT_GT(plain->stats().pair_contacts, 0u);
+  EXPECT_EQ(plain->stats().friction_evaluations, 0u);
+  EXPECT_EQ(plain->stats().gravity_evaluations, 0u);
+  c.friction = true;
+  c.gravity = true;
+  c.g = {0, -0.01, 0};
+  auto full = make_simulation(c, p, vel);
+  full->run(200);
+  EXPECT_EQ(full->stats().friction_evaluations, full->stats().pair_contacts);
+  EXPECT_EQ(full->stats().gravity_evaluations, (200u + 1) * p.size());  // + the initial forces
+}
+
+TEST(Dpm, FreeFallUnderGravityIsExact) {
+  const auto p = make_packing(2, Boundary::walls, {10, 100, 0}, {5, 90}, {1.0});
+  auto c = base_config(2, Boundary::walls, {10, 100, 0}, 0.8, 0.05);
+  c.gravity = true;
+  c.g = {0, -1, 0};
+  auto sim = make_simulation(c, p, {});
+  sim->run(100);  // t = 5: y = 90 - 12.5
+  EXPECT_NEAR(sim->positions()[1], 90 - 0.5 * 25, 1e-9);
+  EXPECT_NEAR(sim->velocities()[1], -5, 1e-12);
+}
+
+}  // namespace
+}  // namespace hgrid::dpm
