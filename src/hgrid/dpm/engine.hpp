@@ -195,8 +195,11 @@ class Engine final : public Simulation {
   void compute_forces() {
     auto t0 = Clock::now();
     HGrid<D, B> grid(s_, box_, grid_params_);
+    const auto t_built = Clock::now();
     pairs_.clear();
     grid.template query<Search::top_down>([&](std::uint32_t i, std::uint32_t j) { pairs_.push_back({i, j}); });
+    stats_.seconds_grid_build += std::chrono::duration<double>(t_built - t0).count();
+    stats_.seconds_query += seconds_since(t_built);
     stats_.seconds_contact_detection += seconds_since(t0);
 
     t0 = Clock::now();

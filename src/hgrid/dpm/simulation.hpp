@@ -21,6 +21,8 @@ struct StepStats {
   std::uint64_t friction_evaluations = 0;  // tangential forces computed
   std::uint64_t gravity_evaluations = 0;   // particles given gravity
   double seconds_contact_detection = 0;    // HGrid build + query (pair list)
+  double seconds_grid_build = 0;           //   of which: building the HGrid
+  double seconds_query = 0;                //   of which: the query (the model's T)
   double seconds_forces = 0;               // contact and wall forces
   double seconds_integration = 0;          // velocity-Verlet updates
 };
