@@ -36,8 +36,8 @@ void run_generate(GenerateOptions o) {
     write_packing(o.out, p);
   }
   std::cerr << "hgrid generate: wrote " << path << " (n = " << p.size() << ", nu = " << p.num_attrs["nu_achieved"]
-            << ", max rel. overlap = "
-            << (p.num_attrs.count("max_rel_overlap") ? std::to_string(p.num_attrs["max_rel_overlap"]) : "n/a") << ", seed = " << o.spec.seed << ")\n";
+            << ", max rel. overlap (-1: not computed) = "
+            << (p.num_attrs.count("max_rel_overlap") ? p.num_attrs["max_rel_overlap"] : -1.0) << ", seed = " << o.spec.seed << ")\n";
   if (!o.cache_dir.empty()) std::cout << path << "\n";
 }
 

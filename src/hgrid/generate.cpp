@@ -26,16 +26,24 @@ constexpr double kGrowthStartNu = 0.35;
 /// Achieved nu must match the request to this relative error.
 constexpr double kNuRelTol = 1e-12;
 
+/// Exact (round-trip) text for cache keys.
 std::string num(double v) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.17g", v);
   return buf;
 }
 
+/// Short text for messages.
+std::string brief(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
 void check_spec(const PackingSpec& s) {
   if (s.d != 2 && s.d != 3) throw InputError("d", "must be 2 or 3 (got " + std::to_string(s.d) + ")");
   if (s.n == 0 || s.n > 0x7fffffffu) throw InputError("n", "must be in [1, 2^31 - 1] (got " + std::to_string(s.n) + ")");
-  if (!(std::isfinite(s.nu) && s.nu > 0 && s.nu < 1)) throw InputError("nu", "must be in (0, 1) (got " + num(s.nu) + ")");
+  if (!(std::isfinite(s.nu) && s.nu > 0 && s.nu < 1)) throw InputError("nu", "must be in (0, 1) (got " + brief(s.nu) + ")");
   if (s.equilibrate && s.placement != Placement::excluded)
     throw InputError("equilibrate", "only applies to excluded-volume placement");
 }
@@ -57,15 +65,15 @@ void place_random(const PackingSpec& s, detail::GenRng& rng, Packing& p) {
     const double r = p.radii[i];
     const double margin = s.boundary == Boundary::walls ? r : 0.0;
     if (2 * margin > side)
-      throw InputError("nu", "too high for walls: a particle of diameter " + num(2 * r) +
-                                 " does not fit the box of side " + num(side));
+      throw InputError("nu", "too high for walls: a particle of diameter " + brief(2 * r) +
+                                 " does not fit the box of side " + brief(side));
     for (int a = 0; a < s.d; ++a) p.positions[i * s.d + a] = margin + rng.uniform() * (side - 2 * margin);
   }
 }
 
 std::string unreachable(const PackingSpec& s, double rcp, const std::string& why) {
   return why + "; the estimated highest reachable nu (random close packing, Farr & Groot 2009 method) for this " +
-         "distribution is " + num(std::round(rcp * 1e4) / 1e4) + " (requested " + num(s.nu) + ")";
+         "distribution is " + brief(std::round(rcp * 1e4) / 1e4) + " (requested " + brief(s.nu) + ")";
 }
 
 void place_excluded(const PackingSpec& s, double rcp, detail::GenRng& rng, Packing& p) {
@@ -73,7 +81,7 @@ void place_excluded(const PackingSpec& s, double rcp, detail::GenRng& rng, Packi
   const double rmax = *std::max_element(p.radii.begin(), p.radii.end());
   const double need = s.boundary == Boundary::walls ? 2 * rmax : 4 * rmax;
   if (side < need)
-    throw InputError("n", "too small: the box side " + num(side) + " must be at least " + num(need) +
+    throw InputError("n", "too small: the box side " + brief(side) + " must be at least " + brief(need) +
                               " (" + (s.boundary == Boundary::walls ? "2" : "4") +
                               " largest radii) for excluded-volume placement; increase n");
   std::vector<std::uint32_t> order(s.n);
@@ -93,9 +101,9 @@ void place_excluded(const PackingSpec& s, double rcp, detail::GenRng& rng, Packi
   double scale0 = 1;
   for (int tries = 0;; ++tries) {
     scale0 = std::pow(nu0 / s.nu, 1.0 / s.d);
-    detail::Progress p0(s.progress, "sequential addition at nu = " + num(nu0));
+    detail::Progress p0(s.progress, "sequential addition at nu = " + brief(nu0));
     if (detail::rsa_place(s.d, s.boundary, p.box, p.radii, order, scale0, rng, p.positions, p0) == s.n) break;
-    if (tries == 5) throw InputError("nu", unreachable(s, rcp, "sequential addition stalls even at nu = " + num(nu0)));
+    if (tries == 5) throw InputError("nu", unreachable(s, rcp, "sequential addition stalls even at nu = " + brief(nu0)));
     nu0 *= 0.8;
   }
   detail::Progress progress2(s.progress, "growth + FIRE relaxation");
@@ -103,7 +111,7 @@ void place_excluded(const PackingSpec& s, double rcp, detail::GenRng& rng, Packi
   if (!detail::grow_and_relax(s.d, s.boundary, p.box, p.radii, scale0, p.positions, progress2, st)) {
     const double reached = s.nu * std::pow(std::pow(detail::kGrowthStep, st.growth_steps) * scale0, s.d);
     throw InputError("nu", unreachable(s, rcp, "the growth did not converge within its FIRE step budget (reached nu ≈ " +
-                                                   num(std::round(std::min(reached, s.nu) * 1e4) / 1e4) + " after " +
+                                                   brief(std::round(std::min(reached, s.nu) * 1e4) / 1e4) + " after " +
                                                    std::to_string(st.fire_steps) + " steps)"));
   }
   p.str_attrs["method"] = "rsa+growth+fire";
@@ -132,15 +140,15 @@ Placement parse_placement(const std::string& s) {
 
 std::unique_ptr<Distribution> make_distribution(const PackingSpec& s) {
   if (!(std::isfinite(s.omega) && s.omega >= 1 && s.omega <= 1e6))
-    throw InputError("omega", "must be in [1, 1e6] (got " + num(s.omega) + ")");
+    throw InputError("omega", "must be in [1, 1e6] (got " + brief(s.omega) + ")");
   if (s.dist == "powerlaw") {
     if (!(std::isfinite(s.alpha) && std::abs(s.alpha) <= 20))
-      throw InputError("alpha", "must be in [-20, 20] (got " + num(s.alpha) + ")");
+      throw InputError("alpha", "must be in [-20, 20] (got " + brief(s.alpha) + ")");
     return std::make_unique<PowerLaw>(s.alpha, s.omega);
   }
   if (s.dist == "lognormal") {
     if (!(std::isfinite(s.sigma) && s.sigma > 0 && s.sigma <= 10))
-      throw InputError("sigma", "must be in (0, 10] (got " + num(s.sigma) + ")");
+      throw InputError("sigma", "must be in (0, 10] (got " + brief(s.sigma) + ")");
     return std::make_unique<LogNormal>(LogNormal::centred(s.sigma, s.omega));
   }
   throw InputError("dist", "must be 'powerlaw' or 'lognormal' (got '" + s.dist + "')");
