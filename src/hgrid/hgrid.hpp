@@ -292,8 +292,16 @@ HGrid<D, B>::HGrid(std::span<const Sphere<D>> spheres, const Extent<D>& box, con
   start_ = count;  // start_[b] = first particle of bucket b; start_[buckets] = N
   // Scatter the 4-byte ids, then gather the spheres in sorted order: random
   // reads overlap in the memory system far better than random 32-byte writes.
-  for (std::size_t i = 0; i < N; ++i) id_[count[tag[i]]++] = static_cast<std::uint32_t>(i);
-  for (std::size_t k = 0; k < N; ++k) sorted_[k] = wrapped(id_[k]);
+  // Both loops are bound by memory latency: fetch a few iterations ahead.
+  constexpr std::size_t ahead = 16;
+  for (std::size_t i = 0; i < N; ++i) {
+    if (i + ahead < N) __builtin_prefetch(&count[tag[i + ahead]], 1);
+    id_[count[tag[i]]++] = static_cast<std::uint32_t>(i);
+  }
+  for (std::size_t k = 0; k < N; ++k) {
+    if (k + ahead < N) __builtin_prefetch(&spheres[id_[k + ahead]]);
+    sorted_[k] = wrapped(id_[k]);
+  }
   level_begin_.resize(L + 1);
   for (int h = 0; h < L; ++h) level_begin_[h] = start_[levels_[h].bucket_base];
   level_begin_[L] = static_cast<std::uint32_t>(N);

@@ -80,11 +80,20 @@ void h5_write_attr(hid_t obj, const std::string& name, const std::string& v) {
 }
 
 namespace {
+/// Dataset creation without modification times, so that the same content
+/// gives the same file bit for bit.
+hid_t untimed_dcpl() {
+  const hid_t p = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_obj_track_times(p, false);
+  return p;
+}
+
 template <class T>
 void write_numeric(hid_t file, const std::string& name, const std::vector<T>& v, std::vector<hsize_t> dims,
                    hid_t file_type, hid_t mem_type) {
   H5Handle sp{H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose};
-  H5Handle ds{H5Dcreate2(file, name.c_str(), file_type, sp.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose};
+  const H5Handle dcpl{untimed_dcpl(), H5Pclose};
+  H5Handle ds{H5Dcreate2(file, name.c_str(), file_type, sp.id, H5P_DEFAULT, dcpl.id, H5P_DEFAULT), H5Dclose};
   if (ds.id < 0 || (!v.empty() && H5Dwrite(ds.id, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0))
     throw std::runtime_error("HDF5: cannot write dataset " + name);
 }
@@ -108,7 +117,8 @@ void h5_write_strings(hid_t file, const std::string& name, const std::vector<std
   H5Tset_size(t.id, width);
   const hsize_t n = v.size();
   H5Handle sp{H5Screate_simple(1, &n, nullptr), H5Sclose};
-  H5Handle ds{H5Dcreate2(file, name.c_str(), t.id, sp.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose};
+  const H5Handle dcpl{untimed_dcpl(), H5Pclose};
+  H5Handle ds{H5Dcreate2(file, name.c_str(), t.id, sp.id, H5P_DEFAULT, dcpl.id, H5P_DEFAULT), H5Dclose};
   if (ds.id < 0 || (n > 0 && H5Dwrite(ds.id, t.id, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()) < 0))
     throw std::runtime_error("HDF5: cannot write dataset " + name);
 }

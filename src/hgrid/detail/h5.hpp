@@ -55,7 +55,9 @@ void h5_write_file(const std::string& path, Fill&& fill) {
   static std::atomic<unsigned> counter{0};
   const std::string tmp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
   try {
-    H5Handle f{H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose};
+    H5Handle fcpl{H5Pcreate(H5P_FILE_CREATE), H5Pclose};
+    H5Pset_obj_track_times(fcpl.id, false);  // root group: no time stamps either
+    H5Handle f{H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, fcpl.id, H5P_DEFAULT), H5Fclose};
     if (f.id < 0) throw InputError("out", "cannot create '" + tmp + "'");
     fill(f.id);
     if (H5Fflush(f.id, H5F_SCOPE_GLOBAL) < 0) throw std::runtime_error("HDF5: flush failed for " + tmp);
