@@ -1,0 +1,68 @@
+// DPM step cost: a switched-off effect costs nothing (friction / gravity
+// compiled out), and the optimal HGrid vs the linked cell on the paper's
+// free-cooling distribution (2D, walls, alpha = -3, omega = 20, nu = 0.4).
+#include <benchmark/benchmark.h>
+
+#include <random>
+
+#include "hgrid/cell_sizes.hpp"
+#include "hgrid/dpm/simulation.hpp"
+#include "hgrid/generate.hpp"
+
+using namespace hgrid;
+
+namespace {
+
+constexpr std::uint64_t kSeed = 7;
+
+const Packing& initial() {
+  static const Packing p = [] {
+    PackingSpec s;
+    s.d = 2;
+    s.n = 10000;
+    s.nu = 0.4;
+    s.alpha = -3;
+    s.omega = 20;
+    s.boundary = Boundary::walls;
+    s.placement = Placement::excluded;  // a DEM state has no large overlaps
+    s.seed = kSeed;
+    s.progress = false;
+    return generate_packing(s);
+  }();
+  return p;
+}
+
+std::vector<double> velocities(std::size_t n) {
+  std::mt19937_64 rng(kSeed);
+  std::normal_distribution<double> g(0.0, 1.0);
+  std::vector<double> v(n);
+  for (auto& x : v) x = g(rng);
+  return v;
+}
+
+// range(0): 0 = plain, 1 = friction, 2 = friction + gravity; range(1): 0 = optimal, 1 = linked cell.
+void BM_DpmStep(benchmark::State& st) {
+  const Packing& p = initial();
+  dpm::DpmConfig c;
+  c.d = 2;
+  c.boundary = Boundary::walls;
+  c.box = p.box;
+  c.contact_time = 0.05;
+  c.dt = 0.0025;
+  c.friction = st.range(0) >= 1;
+  c.gravity = st.range(0) == 2;
+  c.g = {0, -0.01, 0};
+  c.sizes = st.range(1) == 0 ? choose_cell_sizes(PowerLaw(-3, 20), ModelParams{2, 0.4, 0.2, Search::top_down},
+                                                 CellMethod::optimal)
+                                   .sizes
+                             : std::vector<double>{40.0};
+  auto sim = dpm::make_simulation(c, p, velocities(p.size() * 2));
+  for (auto _ : st) sim->run(1);
+  st.SetItemsProcessed(st.iterations() * static_cast<std::int64_t>(p.size()));
+  st.SetLabel(std::string(st.range(0) == 0 ? "plain" : st.range(0) == 1 ? "friction" : "friction+gravity") +
+              (st.range(1) == 0 ? ", optimal" : ", linked cell"));
+}
+BENCHMARK(BM_DpmStep)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisecond);
+
+}  // namespace
+BENCHMARK_MAIN();
