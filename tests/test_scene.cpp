@@ -83,9 +83,22 @@ TEST(Scene, RejectsBadInput) {
   expect_error_naming("name = \"a/b\"\n[packings]\nn = 1\nnu = 0.1\n", "name");
 }
 
+TEST(Scene, KindSelectsTheRunner) {
+  EXPECT_EQ(scene_kind(write_scene("kind", kBase)), "contact");
+  EXPECT_EQ(scene_kind(std::string(HGRID_SOURCE_DIR) + "/experiments/dpm_free_cooling.toml"), "dpm");
+  expect_error_naming(std::string("kind = \"dpm\"\n") + kBase, "kind");
+  try {
+    scene_kind(write_scene("badkind", std::string("kind = \"md\"\n") + kBase));
+    ADD_FAILURE() << "unknown kind accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("kind"), std::string::npos);
+  }
+}
+
 TEST(Scene, ShippedScenesLoad) {
   for (const auto& e : fs::directory_iterator(fs::path(HGRID_SOURCE_DIR) / "experiments")) {
     if (e.path().extension() != ".toml") continue;
+    if (scene_kind(e.path().string()) != "contact") continue;  // DPM scenes: tests/test_dpm.cpp
     for (const char* scale : {"smoke", "default", "paper"}) {
       SCOPED_TRACE(e.path().string() + " " + scale);
       EXPECT_NO_THROW(load_scene(e.path().string(), scale));
