@@ -8,22 +8,14 @@
 #include <utility>
 #include <toml++/toml.h>
 
+#include "hgrid/detail/toml_keys.hpp"
+
 #include "hgrid/error.hpp"
 
 namespace hgrid {
 namespace {
 
-/// Throws for any key of `t` not in `allowed`, naming it and the allowed set.
-void check_keys(const toml::table& t, const std::string& where, const std::set<std::string>& allowed) {
-  for (const auto& [k, v] : t) {
-    const std::string key(k.str());
-    if (!allowed.count(key)) {
-      std::string list;
-      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      throw InputError(where + key, "unknown key (allowed: " + list + ")");
-    }
-  }
-}
+using detail::check_keys;
 
 double as_number(const toml::node& n, const std::string& key) {
   if (auto v = n.value<double>()) return *v;

@@ -198,10 +198,13 @@ std::vector<double> newton(const CostModel& cm, int L, const std::vector<double>
         return tau;
       };
       double tau = max_step();
-      if (tau <= 0.0 && release >= 0) {
+      // The block that opens the released gap; -1 if it is tied to an end
+      // point (s_0 or s_L), which cannot move.
+      const int release_grp = release < 0 ? -1 : ties.group[release_sign > 0 ? release : release - 1];
+      if (tau <= 0.0 && release_grp >= 0) {
         // Newton would shut the gap just released: move only the block that
         // opens it, as the sign test said, and let the line search scale it.
-        const int grp = ties.group[release_sign > 0 ? release : release - 1];
+        const int grp = release_grp;
         const double curv = std::max(std::fabs(H[grp * m + grp]), 1e-300);
         for (int i = 0; i < n; ++i)
           dir[i] = ties.group[i] == grp ? release_sign * std::min(0.1 * span, best_rate / curv) : 0.0;

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <toml++/toml.h>
 
+#include "hgrid/detail/toml_keys.hpp"
+
 #include "hgrid/error.hpp"
 
 namespace hgrid::dpm {
@@ -19,16 +21,7 @@ const std::map<std::string, std::set<std::string>> kKeys = {
     {"grids", {"method", "K", "reference_size"}},
 };
 
-void check_keys(const toml::table& t, const std::string& where, const std::set<std::string>& allowed) {
-  for (const auto& [k, v] : t) {
-    const std::string key(k.str());
-    if (!allowed.count(key)) {
-      std::string list;
-      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      throw InputError(where + key, "unknown key (allowed: " + list + ")");
-    }
-  }
-}
+using detail::check_keys;
 
 const toml::table& section(const toml::table& root, const std::string& name) {
   static const toml::table empty;
