@@ -19,7 +19,7 @@ csv="results/dpm_free_cooling$suffix-energy.csv"
 n=$(python3 -c "import json; print(json.load(open('results/dpm_free_cooling$suffix.json'))['n'])" 2>/dev/null || echo "?")
 for fmt in png pdf; do
   out="paper_figs/fig14-dpm-energy$suffix.$fmt" tmp="paper_figs/.fig14-dpm-energy$suffix.tmp.$fmt"
-  gnuplot -e "in='$csv'; out='$tmp'; fmt='$fmt'; scale_label='$scale scale'; n_label='$n'" plots/fig14-dpm-energy.gp
+  gnuplot -e "in='$csv'; out='$tmp'; fmt='$fmt'; scale_label='$scale scale'; n_label='$n'" plots/fig14.gp
   mv -f "$tmp" "$out"
 done
 table="paper_figs/fig14-dpm-table$suffix.md"

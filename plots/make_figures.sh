@@ -3,6 +3,8 @@
 # accuracy against time) from data written by `hgrid modelfigs`.
 #   1. build/hgrid modelfigs --out results/model   (CSV, "# key=value" headers)
 #   2. gnuplot on every plots/figNN-<what>.gp -> paper_figs/figNN-<what>.png|pdf
+#      (model figures only; scripts fed by other data are named plots/figNN.gp
+#      and run by their own script, e.g. plots/experiments.sh, plots/dpm.sh)
 #   3. hook: every executable plots/figures.d/*.sh runs next, with SCALE as $1
 #      (e.g. a link to plots/experiments.sh for figures 11-12).
 # Fails on any error; every output is written under a temporary name, then renamed.

@@ -1,7 +1,7 @@
 # Fig. 14 (ours; the paper reports the full DPM test in words only): kinetic
 # energy of the 2D free-cooling run against time, optimal HGrid and linked
 # cell, with the Haff-law fit E0 / (1 + t/t0)^2 (Haff 1983).
-# gnuplot -e "in='results/dpm_free_cooling-energy.csv'; out='x.png'; fmt='png'; scale_label='default'" plots/fig14-dpm-energy.gp
+# gnuplot -e "in='results/dpm_free_cooling-energy.csv'; out='x.png'; fmt='png'; scale_label='default'" plots/fig14.gp
 if (!exists("fmt")) fmt = 'png'
 if (fmt eq 'pdf') { set terminal pdfcairo enhanced size 6in,4.2in font 'Helvetica,11' } \
 else { set terminal pngcairo enhanced size 900,630 font 'Helvetica,12' }
