@@ -100,6 +100,26 @@ TEST(Generate, RandomPlacementKeepsCentresInsideWalls) {
     }
 }
 
+TEST(Generate, SlabCountingNoiseOfManufacturedPackings) {
+  // Equal particles: the expected slab deviation is sqrt((1 - 1/S) S / N)
+  // = 0.1 for N = 900 and S = 10, whatever the centres.
+  Packing p;
+  p.d = 3;
+  p.box = {100, 100, 100};
+  for (int i = 0; i < 900; ++i) {
+    p.radii.push_back(1.0);
+    for (double c : {5.0 + (i % 10) * 10.0, 50.0, 50.0}) p.positions.push_back(c);
+  }
+  const PackingQuality q = assess_packing(p, nullptr, false);
+  EXPECT_NEAR(q.slab_noise, 0.1, 1e-12);
+  // One particle of 1000x the volume of the others: the noise is its own.
+  p.radii[0] = 10.0;
+  const PackingQuality big = assess_packing(p, nullptr, false);
+  const double s1 = 1000.0 + 899.0, s2 = 1e6 + 899.0;
+  EXPECT_NEAR(big.slab_noise, std::sqrt(0.9 * 10 * s2) / s1, 1e-12);
+  ASSERT_EQ(big.band_slab_noise.size(), static_cast<std::size_t>(kSizeBands));
+}
+
 TEST(Generate, GrowthReachesDenseEqualVolumeDistribution) {
   // alpha = 0: sequential addition stalls well below 0.6; growth + FIRE finishes.
   for (auto b : {Boundary::periodic, Boundary::walls}) {

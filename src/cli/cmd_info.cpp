@@ -46,6 +46,8 @@ void run_info(const InfoOptions& o) {
   j["slab_nu"] = q.slab_nu;
   j["slab_max_rel_dev"] = q.slab_max_dev;
   j["size_band_slab_max_rel_dev"] = q.band_slab_max_dev;
+  j["slab_counting_noise"] = q.slab_noise;
+  j["size_band_slab_counting_noise"] = q.band_slab_noise;
   if (dist) {
     j["ks_distance"] = q.ks_distance;
     j["ks_pvalue"] = q.ks_pvalue;
@@ -62,7 +64,10 @@ void run_info(const InfoOptions& o) {
   std::cout << o.file << ": n = " << p.size() << ", d = " << p.d << ", " << to_string(p.boundary) << ", nu = " << q.nu
             << "\n  max / mean relative overlap: " << q.max_rel_overlap << " / " << q.mean_rel_overlap
             << "\n  mean contact number: " << q.mean_contacts << "\n  slab nu, worst relative deviation: "
-            << q.slab_max_dev << "\n";
+            << q.slab_max_dev << " (counting noise alone: " << q.slab_noise << ")\n  per size band (equal volume shares):";
+  for (std::size_t b = 0; b < q.band_slab_max_dev.size(); ++b)
+    std::cout << " " << q.band_slab_max_dev[b] << " (noise " << q.band_slab_noise[b] << ")";
+  std::cout << "\n";
   if (dist) std::cout << "  radii vs pdf: KS distance " << q.ks_distance << ", p = " << q.ks_pvalue << "\n";
 }
 

@@ -80,6 +80,12 @@ struct PackingQuality {
   /// and per size band.
   double slab_max_dev = 0;
   std::vector<double> band_slab_max_dev;
+  /// The same deviation expected from counting alone: the standard deviation
+  /// of a slab's nu / mean if the same particles had independent uniform
+  /// centres (each wholly in one slab), sqrt((1 - 1/S) S sum V_i^2) / sum V_i
+  /// for S slabs. A few large particles make it large whatever the generator.
+  double slab_noise = 0;
+  std::vector<double> band_slab_noise;
   /// slab_nu[axis][slab]
   std::vector<std::vector<double>> slab_nu;
   /// Kolmogorov-Smirnov distance of the radii to dist's cdf and its p-value

@@ -107,6 +107,18 @@ void slab_figures(const Packing& p, PackingQuality& q) {
   q.slab_max_dev = worst(q.slab_nu);
   q.band_slab_max_dev.clear();
   for (int b = 0; b < kSizeBands; ++b) q.band_slab_max_dev.push_back(worst(bnu[b]));
+  // Counting noise: a slab's share of sum V_i is binomial with p = 1/S.
+  std::vector<double> v1(kSizeBands + 1, 0.0), v2(kSizeBands + 1, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double v = std::pow(p.radii[i], d);
+    for (int b : {band[i], kSizeBands}) v1[b] += v, v2[b] += v * v;
+  }
+  const auto noise = [](double s1, double s2) {
+    return s1 > 0 ? std::sqrt((1.0 - 1.0 / kSlabs) * kSlabs * s2) / s1 : 0.0;
+  };
+  q.slab_noise = noise(v1[kSizeBands], v2[kSizeBands]);
+  q.band_slab_noise.clear();
+  for (int b = 0; b < kSizeBands; ++b) q.band_slab_noise.push_back(noise(v1[b], v2[b]));
 }
 
 /// Kolmogorov distribution tail Q(lambda) = 2 sum (-1)^(k-1) exp(-2 k^2 lambda^2).

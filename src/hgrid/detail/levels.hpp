@@ -34,10 +34,13 @@ struct Level {
   bool ranked = true;               // rank directory (else hash table)
   bool small_periodic = false;      // some periodic axis has fewer than 3 cells
   std::uint64_t bucket_base = 0;    // first bucket of this level in the directory
-  std::uint64_t buckets = 0;        // ranked: non-empty cells; hashed: table slots
+  std::uint64_t buckets = 0;        // non-empty cells (one bucket each, in key order)
+  std::uint64_t slots = 0;          // hashed: table size (a power of two)
   std::uint64_t word_base = 0;      // ranked: first bitmap word of this level
-  std::uint64_t words = 0;          // ranked: bitmap words (cells / 64, rounded up)
+  std::uint64_t words = 0;          // ranked: bitmap words, cells / 64 + 1 (the last one
+                                    // holds key == cells, so a rank is defined there too)
   std::uint64_t key_base = 0;       // hashed: first slot of its table in the key array
+                                    // (and in the slot -> bucket array)
   int shift = 64;                   // hashed: 64 - log2(table size)
 
   std::uint64_t cells() const {
@@ -45,14 +48,16 @@ struct Level {
     for (int k = 0; k < D; ++k) c *= static_cast<std::uint64_t>(n[k]);
     return c;
   }
+  /// Linear cell index with the LAST axis fastest, so that a row of cells
+  /// along axis D-1 is a run of consecutive keys (and of sorted particles).
   std::uint64_t key(const std::array<std::int64_t, D>& c) const {
-    std::uint64_t k = static_cast<std::uint64_t>(c[D - 1]);
-    for (int a = D - 2; a >= 0; --a) k = k * static_cast<std::uint64_t>(n[a]) + static_cast<std::uint64_t>(c[a]);
+    std::uint64_t k = static_cast<std::uint64_t>(c[0]);
+    for (int a = 1; a < D; ++a) k = k * static_cast<std::uint64_t>(n[a]) + static_cast<std::uint64_t>(c[a]);
     return k;
   }
   std::array<std::int64_t, D> coords(std::uint64_t key) const {
     std::array<std::int64_t, D> c{};
-    for (int a = 0; a < D; ++a) {
+    for (int a = D - 1; a >= 0; --a) {
       c[a] = static_cast<std::int64_t>(key % static_cast<std::uint64_t>(n[a]));
       key /= static_cast<std::uint64_t>(n[a]);
     }
@@ -74,20 +79,20 @@ struct Level {
 };
 
 /// Coordinates of increasing cell keys without a division per key: steps
-/// along axis 0 and carries, falling back to division for long jumps.
+/// along the row axis D-1 and carries, falling back to division for long jumps.
 template <int D>
 class KeyWalk {
  public:
   explicit KeyWalk(const Level<D>& L) : L_(L) {}
   const std::array<std::int64_t, D>& to(std::uint64_t key) {
     const std::uint64_t delta = key - key_;
-    if (key < key_ || delta >= static_cast<std::uint64_t>(L_.n[0])) {
+    if (key < key_ || delta >= static_cast<std::uint64_t>(L_.n[D - 1])) {
       c_ = L_.coords(key);
     } else {
-      c_[0] += static_cast<std::int64_t>(delta);
-      for (int a = 0; a + 1 < D && c_[a] >= L_.n[a]; ++a) {
+      c_[D - 1] += static_cast<std::int64_t>(delta);
+      for (int a = D - 1; a > 0 && c_[a] >= L_.n[a]; --a) {
         c_[a] -= L_.n[a];
-        ++c_[a + 1];
+        ++c_[a - 1];
       }
     }
     key_ = key;

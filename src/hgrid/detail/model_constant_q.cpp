@@ -1,4 +1,5 @@
 // Constant ratio of particles per cell, m_{h+1} = q m_h (Eqs. 37-39).
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -55,22 +56,28 @@ std::vector<double> constant_ratio_sizes(const CostModel& cm, int L, double q) {
   auto m_of = [&](double a, double b) { return c * std::pow(b, d) * dist.moment(0, 0.5 * a, 0.5 * b); };
   const double x0 = std::log(s0), xL = std::log(sL);
   // Smooth CDFs: solve ln m(a, e^y) = ln target by Newton in y, kept inside
-  // the bracket [ln a, ln s_L]; ln m is nearly linear in y.
-  auto newton_log = [&](double a, double target) {
-    double lo = std::log(a), hi = xL, y = hi;
+  // the bracket [ln a, ln s_L]; ln m is nearly linear in y. Level h starts
+  // from its solution in the previous shot (the shots converge onto each
+  // other), else from ln s_L.
+  std::vector<double> warm(L, kInf);
+  auto newton_log = [&](int h, double a, double target) {
+    double lo = std::log(a), hi = xL, y = warm[h] > lo && warm[h] < hi ? warm[h] : hi;
+    const auto done = [&](double v) { return warm[h] = v; };
     const double lt = std::log(target);
     for (int it = 0; it < kMaxRootSteps && hi - lo > kLogSizeTol; ++it) {
       const double b = std::exp(y), P = dist.moment(0, 0.5 * a, 0.5 * b);
       const double g = std::log(c * std::pow(b, d) * P) - lt;
-      if (g == 0.0) return y;
+      if (g == 0.0) return done(y);
       (g < 0.0 || !(P > 0.0) ? lo : hi) = y;
       const double dg = d + 0.5 * b * dist.pdf(0.5 * b) / P;
       double yn = y - g / dg;
+      // Converged: checked before the bracket test, since y has just become
+      // one of the bracket's ends and a tiny step would fall onto it.
+      if (std::isfinite(g) && std::fabs(yn - y) < kLogSizeTol) return done(std::clamp(yn, lo, hi));
       if (!(yn > lo && yn < hi) || !std::isfinite(g)) yn = 0.5 * (lo + hi);
-      if (std::fabs(yn - y) < kLogSizeTol) return yn;
       y = yn;
     }
-    return hi;
+    return done(hi);
   };
 
   // Shoot from s_1 = e^x1 through m_{h+1} = q m_h, letting sizes run past
@@ -86,7 +93,7 @@ std::vector<double> constant_ratio_sizes(const CostModel& cm, int L, double q) {
       if (!(target > 0.0)) {
         next = a;
       } else if (m_of(a, sL) >= target) {
-        next = std::exp(dist.smooth() ? newton_log(a, target)
+        next = std::exp(dist.smooth() ? newton_log(h, a, target)
                                       : solve_increasing([&](double y) { return m_of(a, std::exp(y)) - target; },
                                                          std::log(a), xL, -target, m_of(a, sL) - target));
       } else {  // beyond s_L the level holds every radius above a/2: closed form

@@ -1,0 +1,223 @@
+// HGrid queries: the same-level half stencil and the cross-level search
+// (Krijgsman et al. 2014, Sect. 2, Eqs. 4-5). Included by hgrid/hgrid.hpp only.
+#pragma once
+#include <array>
+#include <cmath>
+
+namespace hgrid {
+
+template <int D, Boundary B>
+template <class Add>
+std::uint64_t HGrid<D, B>::half_stencil(const detail::Level<D>& L, const Coords& c, Add&& add) const {
+  std::uint64_t cells = 0;
+  if (!L.ranked || (B == Boundary::periodic && L.small_periodic)) {
+    detail::for_each_half_neighbour<D, B>(L, c, [&](const Coords& nc) {
+      const auto [b, e] = cell_range(L, nc);
+      if (b != e) add(b, e);
+      ++cells;
+    });
+    return cells;
+  }
+  // Ranked level with at least 3 cells per periodic axis: the half stencil
+  // (offsets whose first non-zero component is +1) is, along the row axis
+  // D-1, the full rows {-1, 0, 1} at the offsets u of the other axes whose
+  // first non-zero component is +1, plus the cell +1 of the own row.
+  const std::int64_t n = L.n[D - 1];
+  auto runs = [&](std::uint64_t k0, std::uint64_t k1) {
+    const std::uint64_t b0 = rank(L, k0), b1 = rank(L, k1);
+    if (b0 != b1) add(start_[b0], start_[b1]);
+  };
+  auto row = [&](const Coords& rc, std::int64_t lo, std::int64_t hi) {
+    if constexpr (B == Boundary::walls) {
+      lo = std::max<std::int64_t>(lo, 0);
+      hi = std::min<std::int64_t>(hi, n - 1);
+      if (lo > hi) return;
+    }
+    row_runs(L.key(rc), lo, hi, n, runs);
+    cells += static_cast<std::uint64_t>(hi - lo + 1);
+  };
+  static constexpr auto offsets = detail::half_offsets<D - 1>();
+  for (const auto& u : offsets) {
+    Coords rc{};
+    bool inside = true;
+    for (int a = 0; a + 1 < D; ++a) {
+      std::int64_t i = c[a] + u[a];
+      if constexpr (B == Boundary::walls) {
+        inside = inside && i >= 0 && i < L.n[a];
+      } else {
+        if (i < 0) i += L.n[a];
+        if (i >= L.n[a]) i -= L.n[a];
+      }
+      rc[a] = i;
+    }
+    if (inside) row(rc, c[D - 1] - 1, c[D - 1] + 1);
+  }
+  Coords rc = c;
+  rc[D - 1] = 0;
+  row(rc, c[D - 1] + 1, c[D - 1] + 1);
+  return cells;
+}
+
+template <int D, Boundary B>
+template <class Count, class F>
+void HGrid<D, B>::cross_level(std::uint32_t p, int h, int j, F& f, Counters& out) const {
+  const auto& lv = levels_[j];
+  const Sphere<D>& sp = sorted_[p];
+  // Search box x_p +- beta, beta = r_p + s_j / 2 (Eq. 4), as cell ranges.
+  std::array<std::int64_t, D> lo{}, hi{};
+  std::array<bool, D> wrap{};
+  for (int a = 0; a < D; ++a) {
+    const double beta = sp.r + 0.5 * lv.s[a];
+    const double n = static_cast<double>(lv.n[a]);
+    double l = std::floor((sp.x[a] - beta) / lv.s[a]);
+    double u = std::floor((sp.x[a] + beta) / lv.s[a]);
+    if constexpr (B == Boundary::walls) {
+      l = std::clamp(l, 0.0, n - 1);  // cells beyond a wall do not exist
+      u = std::clamp(u, 0.0, n - 1);
+      wrap[a] = false;
+    } else if (u - l + 1 >= n) {  // the box covers the whole periodic axis: each cell once
+      l = 0;
+      u = n - 1;
+      wrap[a] = false;
+    } else {
+      wrap[a] = true;
+    }
+    lo[a] = static_cast<std::int64_t>(l);
+    hi[a] = static_cast<std::int64_t>(u);
+  }
+  std::uint64_t accessed = 1, checked = 0;
+  for (int a = 0; a < D; ++a) accessed *= static_cast<std::uint64_t>(hi[a] - lo[a] + 1);
+  auto range = [&](std::uint32_t qb, std::uint32_t qe) {
+    checked += qe - qb;
+    for (std::uint32_t q = qb; q < qe; ++q) test<Count>(p, q, f, out);
+  };
+  const std::uint32_t first = level_begin_[j], last = level_begin_[j + 1];
+  if (accessed > last - first) {
+    // The box holds more cells than level j holds particles: visit the
+    // particles and keep those whose cell is in the box. Same pairs, same
+    // counts (every cell of the box still counts as one access), less work.
+    for (std::uint32_t q = first; q < last; ++q) {
+      bool inside = true;
+      for (int a = 0; a < D && inside; ++a) {
+        std::int64_t k = lv.cell_1d(sorted_[q].x[a], a) - lo[a];
+        if (wrap[a]) {  // the unwrapped range [lo, hi] is narrower than n: one image can match
+          k %= lv.n[a];
+          if (k < 0) k += lv.n[a];
+        }
+        inside = k >= 0 && k <= hi[a] - lo[a];
+      }
+      if (!inside) continue;
+      ++checked;
+      test<Count>(p, q, f, out);
+    }
+  } else {
+    // Walk the box a row (along axis D-1) at a time. On a ranked level a row
+    // is one run of keys and its particles one contiguous range, whatever
+    // the number of empty cells in it; otherwise look the cells up one by one.
+    // The rows' ranges lie far apart in memory: gather a batch of them with
+    // prefetches first, so that their cache misses overlap, then test.
+    constexpr int kBatch = 32;
+    std::array<std::pair<std::uint64_t, std::uint64_t>, kBatch> batch;
+    int n_batch = 0;
+    auto flush = [&] {
+      std::array<std::pair<std::uint32_t, std::uint32_t>, kBatch> ranges;
+      for (int i = 0; i < n_batch; ++i) {
+        ranges[i] = {start_[batch[i].first], start_[batch[i].second]};
+        __builtin_prefetch(&sorted_[ranges[i].first]);
+      }
+      for (int i = 0; i < n_batch; ++i) range(ranges[i].first, ranges[i].second);
+      n_batch = 0;
+    };
+    auto runs = [&](std::uint64_t k0, std::uint64_t k1) {
+      const std::uint64_t b0 = rank(lv, k0), b1 = rank(lv, k1);
+      if (b0 == b1) return;  // only empty cells
+      __builtin_prefetch(&start_[b0]);
+      batch[n_batch++] = {b0, b1};
+      if (n_batch == kBatch) flush();
+    };
+    Coords c = lo;
+    for (;;) {
+      Coords w = c;
+      if constexpr (B == Boundary::periodic) {
+        for (int a = 0; a + 1 < D; ++a)
+          if (wrap[a]) w[a] = c[a] < 0 ? c[a] + lv.n[a] : (c[a] >= lv.n[a] ? c[a] - lv.n[a] : c[a]);
+      }
+      if (lv.ranked) {
+        w[D - 1] = 0;
+        row_runs(lv.key(w), lo[D - 1], hi[D - 1], lv.n[D - 1], runs);
+      } else {
+        const std::int64_t n = lv.n[D - 1];
+        for (std::int64_t k = lo[D - 1]; k <= hi[D - 1]; ++k) {
+          w[D - 1] = k < 0 ? k + n : (k >= n ? k - n : k);
+          const auto [qb, qe] = cell_range(lv, w);
+          range(qb, qe);
+        }
+      }
+      int a = D - 2;
+      for (; a >= 0; --a) {
+        if (++c[a] <= hi[a]) break;
+        c[a] = lo[a];
+      }
+      if (a < 0) break;
+    }
+    flush();
+  }
+  if constexpr (Count::enabled) {
+    const int L = levels();
+    out.cell_accesses += accessed;
+    out.narrow_phase_checks += checked;
+    out.accesses_by_level[h * L + j] += accessed;
+    out.checks_by_level[h * L + j] += checked;
+  }
+}
+
+template <int D, Boundary B>
+template <Search S, class Count, class F>
+Counters HGrid<D, B>::query(F&& f) const {
+  const int L = levels();
+  Counters out;
+  out.levels = L;
+  out.particles_per_level = particles_per_level();
+  if constexpr (Count::enabled) {
+    out.accesses_by_level.assign(L * L, 0);
+    out.checks_by_level.assign(L * L, 0);
+  }
+  std::array<std::pair<std::uint32_t, std::uint32_t>, detail::kHalfStencil<D>> nb;
+  for (int h = 0; h < L; ++h) {
+    const auto& lv = levels_[h];
+    detail::KeyWalk<D> walk(lv);
+    for_each_cell(lv, [&](std::uint64_t b, std::uint64_t key) {
+      const std::uint32_t beg = start_[b], end = start_[b + 1];
+      // Same level (linked cell): the half stencil is shared by the cell's
+      // particles; n_nb non-empty ranges holding nb_particles particles.
+      int n_nb = 0;
+      std::uint64_t nb_particles = 0;
+      const std::uint64_t nb_cells = half_stencil(lv, walk.to(key), [&](std::uint32_t qb, std::uint32_t qe) {
+        nb[n_nb++] = {qb, qe};
+        nb_particles += qe - qb;
+      });
+      for (std::uint32_t p = beg; p < end; ++p) {
+        for (std::uint32_t q = p + 1; q < end; ++q) test<Count>(p, q, f, out);
+        for (int m = 0; m < n_nb; ++m)
+          for (std::uint32_t q = nb[m].first; q < nb[m].second; ++q) test<Count>(p, q, f, out);
+        if constexpr (Count::enabled) {
+          const std::uint64_t acc = 1 + nb_cells;
+          const std::uint64_t chk = (end - p - 1) + nb_particles;
+          out.cell_accesses += acc;
+          out.narrow_phase_checks += chk;
+          out.accesses_by_level[h * L + h] += acc;
+          out.checks_by_level[h * L + h] += chk;
+        }
+        // Cross-level search (Eqs. 4-5): lower levels (Top-Down) or higher ones (Bottom-Up).
+        if constexpr (S == Search::top_down) {
+          for (int j = 0; j < h; ++j) cross_level<Count>(p, h, j, f, out);
+        } else {
+          for (int j = h + 1; j < L; ++j) cross_level<Count>(p, h, j, f, out);
+        }
+      }
+    });
+  }
+  return out;
+}
+
+}  // namespace hgrid
