@@ -53,14 +53,23 @@ json tool(double seconds, std::uint64_t pairs, double n) {
   return json{{"seconds_per_build", seconds}, {"seconds_per_particle", seconds / n}, {"pairs", pairs}};
 }
 
-/// Size-class candidates for LAMMPS multi: k geometric classes from `smallest`.
-std::vector<std::pair<int, double>> scan_candidates(const std::string& scan, std::size_t n, double dmin) {
+/// Size-class candidates for LAMMPS multi: k geometric classes from `smallest`
+/// (a multiple of the smallest diameter). Candidates whose smallest class
+/// would need more than kMaxBins bins (LAMMPS bins it at half its cutoff; at
+/// N = 1e6 the smallest diameter gives "Too many neighbor bins", and 1e8 bins
+/// take a minute to set up) are left out: the scan keeps the coarser ones.
+constexpr double kMaxBins = 3e7;
+std::vector<std::pair<int, double>> scan_candidates(const std::string& scan, const Packing& p, double dmin) {
   std::vector<std::pair<int, double>> c;
-  const bool full = scan == "full" || (scan == "auto" && n <= 200000);
-  const std::vector<int> ks = full ? std::vector<int>{2, 3, 4, 6, 8} : std::vector<int>{3, 4, 6};
-  const std::vector<double> fs = full ? std::vector<double>{1, 2, 4, 8} : std::vector<double>{2, 4, 8, 16};
-  for (int k : ks)
-    for (double f : fs) c.push_back({k, f * dmin});
+  const bool full = scan == "full" || (scan == "auto" && p.size() <= 200000);
+  const std::vector<int> ks = full ? std::vector<int>{2, 3, 4, 6} : std::vector<int>{3, 4};
+  for (double f : {1.0, 2.0, 4.0, 8.0, 16.0, 32.0}) {
+    double bins = 1;
+    for (int a = 0; a < p.d; ++a) bins *= p.box[a] / (0.5 * f * dmin) + 4;
+    if (bins > kMaxBins) continue;
+    for (int k : ks) c.push_back({k, f * dmin});
+    if (!full && c.size() >= 6) break;
+  }
   return c;
 }
 
@@ -74,7 +83,7 @@ json run_lammps_tools(const Options& o, const Packing& p, const std::string& lmp
   LammpsScript s;
   s.builds = o.builds;
   std::vector<double> best_c;
-  for (auto [k, smallest] : scan_candidates(o.scan, p.size(), dmin)) {
+  for (auto [k, smallest] : scan_candidates(o.scan, p, dmin)) {
     s.collections = geometric_collections(p, k, smallest);
     export_lammps(dir, p, s);
     const LammpsResult r = run_lammps(lmp, dir, "in.multi.lmp");
