@@ -13,10 +13,11 @@ set ylabel 'time per build / hgridlab HGrid time'
 set logscale y
 set grid
 set xrange [0:0.65]
+set yrange [0.8:*]
 if (!exists("placement")) placement = 'excluded'
 set title sprintf('hgridlab vs peers: {/Symbol a} = -3, {/Symbol w} = 100, d = 3, periodic, %s', placement)
 sel(t, v) = (strcol("tool") eq t && strcol("placement") eq placement) ? v : NaN
-tools = "lammps_multi lammps_bin cgal linked_cell"
+if (!exists("tools")) tools = "lammps_multi lammps_bin cgal"
 plot for [i=1:words(tools)] in using (sel(word(tools,i), column("nu"))):"ratio_vs_hgrid" \
-       with linespoints lw 2 pt 7 lc i title word(tools,i), \
+       smooth unique with linespoints lw 2 pt 7 lc i title word(tools,i) noenhanced, \
      1 with lines lc rgb 'black' dt 2 title 'hgridlab'
