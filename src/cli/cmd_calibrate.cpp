@@ -52,12 +52,15 @@ void run(const CalibrateArgs& a) {
   const std::string path = a.out.empty() ? calibration_path() : a.out;
   CalibrateOptions opt;
   opt.quick = a.quick;
-  if (a.quick) opt.timing = TimingOptions{2, 20, 0.1};
+  if (a.quick) {
+    opt.timing = TimingOptions{2, 20, 0.1};
+    opt.passes = 1;
+  }
   const auto t0 = std::chrono::steady_clock::now();
   opt.progress = [&](std::size_t done, std::size_t total, const CalibrationSample& s) {
     const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const double rate = double(done) / el;
-    std::fprintf(stderr, "hgrid calibrate: %zu/%zu scenes (%.0f%%), %.2g scenes/s, ETA %.0f s | %s: %.4g ms\n", done,
+    std::fprintf(stderr, "hgrid calibrate: %zu/%zu scene timings (%.0f%%), %.2g/s, ETA %.0f s | %s: %.4g ms\n", done,
                  total, 100.0 * double(done) / double(total), rate, double(total - done) / rate,
                  s.scene.label().c_str(), 1e3 * s.seconds);
   };

@@ -144,18 +144,31 @@ Calibration fit_calibration(const std::vector<CalibrationSample>& samples) {
 }
 
 CalibrationRun run_calibration(const CalibrateOptions& opt) {
+  if (opt.passes < 1) throw InputError("passes", "must be >= 1");
   const auto scenes = calibration_scenes(opt.quick);
-  CalibrationRun run;
-  Packing packing;
-  const PackingSpec* current = nullptr;
+  std::vector<Packing> packings;
+  std::vector<std::size_t> packing_of(scenes.size());
   for (std::size_t i = 0; i < scenes.size(); ++i) {
-    if (!current || !same_packing(*current, scenes[i].packing)) {
-      packing = generate_packing(scenes[i].packing);
-      current = &scenes[i].packing;
-    }
-    run.samples.push_back(measure_scene(scenes[i], packing, opt.timing));
-    if (opt.progress) opt.progress(i + 1, scenes.size(), run.samples.back());
+    if (i == 0 || !same_packing(scenes[i - 1].packing, scenes[i].packing))
+      packings.push_back(generate_packing(scenes[i].packing));
+    packing_of[i] = packings.size() - 1;
   }
+  CalibrationRun run;
+  run.samples.resize(scenes.size());
+  const std::size_t total = scenes.size() * static_cast<std::size_t>(opt.passes);
+  for (int pass = 0; pass < opt.passes; ++pass)
+    for (std::size_t i = 0; i < scenes.size(); ++i) {
+      const CalibrationSample s = measure_scene(scenes[i], packings[packing_of[i]], opt.timing);
+      CalibrationSample& best = run.samples[i];
+      if (pass == 0 || s.seconds < best.seconds) {
+        const int repeats = best.repeats;
+        best = s;
+        best.repeats += repeats;
+      } else {
+        best.repeats += s.repeats;
+      }
+      if (opt.progress) opt.progress(pass * scenes.size() + i + 1, total, best);
+    }
   run.result = fit_calibration(run.samples);
   run.result.machine = machine_description();
   run.result.date = utc_now();

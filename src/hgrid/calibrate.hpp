@@ -61,7 +61,11 @@ Calibration fit_calibration(const std::vector<CalibrationSample>& samples);
 struct CalibrateOptions {
   bool quick = false;
   TimingOptions timing;
-  /// Called after each scene with (scenes done, total, the sample).
+  /// Every scene is timed once per pass, the passes one after the other, and
+  /// the fastest time is kept: a burst of load from other processes then
+  /// hits one pass of a scene, not all its repeats.
+  int passes = 2;
+  /// Called after each scene and pass with (timings done, total, the sample).
   std::function<void(std::size_t, std::size_t, const CalibrationSample&)> progress;
 };
 
@@ -70,7 +74,7 @@ struct CalibrationRun {
   std::vector<CalibrationSample> samples;
 };
 
-/// Generates the packings (in memory), measures every scene, fits.
+/// Generates the packings (kept in memory), measures every scene, fits.
 CalibrationRun run_calibration(const CalibrateOptions& opt);
 
 }  // namespace hgrid
