@@ -5,7 +5,7 @@ JOBS  ?= $(shell nproc 2>/dev/null || echo 2)
 SCALE ?= default
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: all build test test-asan figures bench deps clean
+.PHONY: all build test test-asan figures bench deps clean calibrate calibrate-figure
 
 all: build
 
@@ -33,6 +33,14 @@ figures: build
 	bash plots/make_figures.sh $(SCALE)
 	bash plots/experiments.sh $(SCALE)
 	if [ -f plots/dpm.sh ]; then bash plots/dpm.sh $(SCALE); fi
+
+# Measure this machine's K (stored for --K auto), then the figure of whether
+# it pays: paper_figs/calibration.png (~2 min; not part of `make figures`).
+calibrate: build
+	$(BUILD)/hgrid calibrate
+
+calibrate-figure: build
+	HGRID=$(BUILD)/hgrid bash plots/calibration.sh
 
 bench: build
 	@for b in $(BUILD)/bench_*; do echo "== $$b"; $$b --benchmark_counters_tabular=true || exit 1; done

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "cli/common.hpp"
+#include "hgrid/calibration.hpp"
 #include "hgrid/cell_sizes.hpp"
 #include "hgrid/detail/model_figs.hpp"
 #include "hgrid/error.hpp"
@@ -19,8 +20,8 @@ namespace {
 
 struct ModelOptions {
   int d = 3;
-  double nu = 0.7, K = 0.2, alpha = -3.0, omega = 100.0, q = 1.0, sigma = 1.0;
-  std::string search = "topdown", cells = "optimal", dist = "powerlaw", radii_file;
+  double nu = 0.7, alpha = -3.0, omega = 100.0, q = 1.0, sigma = 1.0;
+  std::string K = "0.2", search = "topdown", cells = "optimal", dist = "powerlaw", radii_file;
   int levels = 0;  // 0: search L*
   bool json = false;
 };
@@ -68,7 +69,7 @@ void run_model(const ModelOptions& o) {
   ModelParams p;
   p.d = o.d;
   p.nu = o.nu;
-  p.K = o.K;
+  p.K = resolve_K(o.K, "K");
   p.search = parse_search(o.search);
   validate(p);
   const CellMethod method = parse_cell_method(o.cells);
@@ -112,7 +113,7 @@ void register_model_commands(CLI::App& app) {
   sub->add_option("--nu", o->nu, "packing fraction, > 0")->capture_default_str();
   sub->add_option("--alpha", o->alpha, "power-law exponent of f(r) = C r^alpha")->capture_default_str();
   sub->add_option("--omega", o->omega, "r_max / r_min, >= 1")->capture_default_str();
-  sub->add_option("--K", o->K, "cell-access time / overlap-test time, >= 0")->capture_default_str();
+  sub->add_option("--K", o->K, kKHelp)->capture_default_str();
   sub->add_option("--search", o->search, "topdown | bottomup")->capture_default_str();
   sub->add_option("--cells", o->cells, "linear | exponential | constant | optimal")->capture_default_str();
   auto* lv = sub->add_option("--levels", o->levels, "number of levels L >= 1 (default: search the best L*)");

@@ -12,6 +12,11 @@ void register_model_commands(CLI::App& app);  // model, modelfigs  (cmd_model.cp
 void register_generate_commands(CLI::App& app);  // generate, info (cmd_generate.cpp)
 void register_run_commands(CLI::App& app);       // run           (cmd_run.cpp)
 void register_export_commands(CLI::App& app);    // export        (cmd_export.cpp)
+void register_calibrate_commands(CLI::App& app);  // calibrate   (cmd_calibrate.cpp)
+
+/// A --K option's text: a number >= 0, or "auto" (the stored calibration).
+inline constexpr const char* kKHelp =
+    "cell access time / overlap test time (>= 0), or 'auto': the K measured by `hgrid calibrate`";
 
 /// Exit status for bad input (file, parameter): one line on stderr, status 2.
 inline constexpr int kBadInput = 2;

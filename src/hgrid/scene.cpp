@@ -8,6 +8,7 @@
 #include <utility>
 #include <toml++/toml.h>
 
+#include "hgrid/calibration.hpp"
 #include "hgrid/detail/toml_keys.hpp"
 
 #include "hgrid/error.hpp"
@@ -127,8 +128,13 @@ void read_grid(const toml::table& t, SceneGrid& g) {
     if (!(g.q > 0)) throw InputError("grid.q", "must be > 0");
   }
   if (auto v = t["K"]) {
-    g.K = numbers(*v.node(), "grid.K").at(0);
-    if (!(g.K >= 0)) throw InputError("grid.K", "must be >= 0");
+    if (auto text = v.value<std::string>()) {
+      if (*text != "auto") throw InputError("grid.K", "must be a number >= 0 or \"auto\" (got \"" + *text + "\")");
+      g.K = calibrated_K("grid.K");
+    } else {
+      g.K = numbers(*v.node(), "grid.K").at(0);
+      if (!(g.K >= 0)) throw InputError("grid.K", "must be >= 0");
+    }
   }
   if (auto v = t["search"]) {
     g.searches.clear();

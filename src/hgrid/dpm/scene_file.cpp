@@ -5,6 +5,7 @@
 #include <sstream>
 #include <toml++/toml.h>
 
+#include "hgrid/calibration.hpp"
 #include "hgrid/detail/toml_keys.hpp"
 
 #include "hgrid/error.hpp"
@@ -154,7 +155,12 @@ DpmScene load_dpm_scene(const std::string& path, const std::string& scale) {
 
   const auto& gr = section(root, "grids");
   s.method = text(gr, "grids", "method", "optimal");
-  s.K = number(gr, "grids", "K", 0.2);
+  if (const auto* k = gr.get("K"); k && k->is_string()) {
+    if (k->value<std::string>() != "auto") throw InputError("grids.K", "must be a number or \"auto\"");
+    s.K = calibrated_K("grids.K");
+  } else {
+    s.K = number(gr, "grids", "K", 0.2);
+  }
   s.reference_size = number(gr, "grids", "reference_size", 2 * s.initial.omega);
   if (!(s.reference_size >= 2 * s.initial.omega))
     throw InputError("grids.reference_size", "must be >= 2 omega (the largest diameter, r_min = 1)");
