@@ -2,7 +2,8 @@
 # Installs hgridlab's Debian packages when any is missing (needs root).
 set -euo pipefail
 pkgs=(build-essential cmake libgsl-dev libhdf5-dev libbenchmark-dev libgtest-dev
-      libcli11-dev libtomlplusplus-dev nlohmann-json3-dev gnuplot-nox)
+      libcli11-dev libtomlplusplus-dev nlohmann-json3-dev gnuplot-nox
+      lammps)  # lammps: only for the LAMMPS comparison test (skipped without lmp); ~30 s to install
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

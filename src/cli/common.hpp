@@ -11,6 +11,7 @@ void register_grid_commands(CLI::App& app);   // pairs, count      (cmd_grid.cpp
 void register_model_commands(CLI::App& app);  // model, modelfigs  (cmd_model.cpp)
 void register_generate_commands(CLI::App& app);  // generate, info (cmd_generate.cpp)
 void register_run_commands(CLI::App& app);       // run           (cmd_run.cpp)
+void register_export_commands(CLI::App& app);    // export        (cmd_export.cpp)
 void register_calibrate_commands(CLI::App& app);  // calibrate   (cmd_calibrate.cpp)
 
 /// A --K option's text: a number >= 0, or "auto" (the stored calibration).

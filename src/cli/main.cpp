@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
   hgrid::cli::register_model_commands(app);
   hgrid::cli::register_generate_commands(app);
   hgrid::cli::register_run_commands(app);
+  hgrid::cli::register_export_commands(app);
   hgrid::cli::register_calibrate_commands(app);
   try {
     app.parse(argc, argv);

@@ -1,0 +1,234 @@
+// hgridlab against its peers (issue 6): the HGrid vs the single-level linked
+// cell, CGAL box_intersection_d and LAMMPS `neighbor multi` / `bin`, on the
+// figure-11 packing (3D, periodic, alpha = -3, omega = 100, nu = 0.6,
+// excluded volume). Every tool must find the same number of pairs (distance
+// < r_i + r_j); a disagreement exits with status 1.
+//
+//   build/peers --n 100000 --json          (see --help; LAMMPS: `lmp` on PATH)
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "bench/detail/cgal_pairs.hpp"
+#include "hgrid/dispatch.hpp"
+#include "hgrid/generate.hpp"
+#include "hgrid/hgrid.hpp"
+#include "hgrid/lammps_export.hpp"
+#include "hgrid/lammps_run.hpp"
+#include "hgrid/packing_sizes.hpp"
+
+namespace {
+
+using namespace hgrid;
+using json = nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+struct Options {
+  PackingSpec spec;
+  std::string placement = "excluded", boundary = "periodic", cache = "results/packings", work, csv, scan = "auto";
+  int repeats = 3, builds = 5, bin_builds = 1;
+  bool as_json = false, no_cgal = false, no_lammps = false, no_bin = false, linked_cell = false, no_linked_cell = false;
+};
+
+/// Best wall time of `repeats` calls of f (which returns the pair count).
+template <class F>
+std::pair<double, std::uint64_t> best_of(int repeats, F&& f) {
+  double best = 1e300;
+  std::uint64_t pairs = 0;
+  for (int k = 0; k < repeats; ++k) {
+    const auto t0 = Clock::now();
+    pairs = f();
+    best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
+  }
+  return {best, pairs};
+}
+
+json tool(double seconds, std::uint64_t pairs, double n) {
+  return json{{"seconds_per_build", seconds}, {"seconds_per_particle", seconds / n}, {"pairs", pairs}};
+}
+
+/// Size-class candidates for LAMMPS multi: k geometric classes from `smallest`
+/// (a multiple of the smallest diameter). Candidates whose smallest class
+/// would need more than kMaxBins bins (LAMMPS bins it at half its cutoff; at
+/// N = 1e6 the smallest diameter gives "Too many neighbor bins", and 1e8 bins
+/// take a minute to set up) are left out: the scan keeps the coarser ones.
+constexpr double kMaxBins = 3e7;
+std::vector<std::pair<int, double>> scan_candidates(const std::string& scan, const Packing& p, double dmin) {
+  std::vector<std::pair<int, double>> c;
+  const bool full = scan == "full" || (scan == "auto" && p.size() <= 200000);
+  const std::vector<int> ks = full ? std::vector<int>{2, 3, 4, 6} : std::vector<int>{3, 4};
+  for (double f : {1.0, 2.0, 4.0, 8.0, 16.0, 32.0}) {
+    double bins = 1;
+    for (int a = 0; a < p.d; ++a) bins *= p.box[a] / (0.5 * f * dmin) + 4;
+    if (bins > kMaxBins) continue;
+    for (int k : ks) c.push_back({k, f * dmin});
+    if (!full && c.size() >= 6) break;
+  }
+  return c;
+}
+
+json run_lammps_tools(const Options& o, const Packing& p, const std::string& lmp, std::uint64_t& multi_pairs,
+                      std::uint64_t& bin_pairs, double& multi_s, double& bin_s) {
+  json out;
+  const std::string dir = o.work;
+  const double dmin = 2 * *std::min_element(p.radii.begin(), p.radii.end());
+  json scan = json::array();
+  double best = 1e300;
+  LammpsScript s;
+  s.builds = o.builds;
+  std::vector<double> best_c;
+  for (auto [k, smallest] : scan_candidates(o.scan, p, dmin)) {
+    s.collections = geometric_collections(p, k, smallest);
+    export_lammps(dir, p, s);
+    const LammpsResult r = run_lammps(lmp, dir, "in.multi.lmp");
+    json row{{"collections", s.collections}, {"ok", r.ok}};
+    if (r.ok) {
+      row["seconds_per_build"] = r.seconds_per_build();
+      row["comm_seconds_per_build"] = r.comm_seconds / static_cast<double>(std::max<std::uint64_t>(r.builds, 1));
+      row["pairs"] = r.pairs;
+      if (r.seconds_per_build() < best) best = r.seconds_per_build(), best_c = s.collections, multi_pairs = r.pairs;
+    } else {
+      row["error"] = r.error;
+    }
+    std::cerr << "peers: lammps multi " << row.dump() << "\n";
+    scan.push_back(row);
+  }
+  if (best < 1e300) {
+    multi_s = best;
+    out["lammps_multi_collections"] = best_c;
+  }
+  out["lammps_multi_scan"] = scan;
+  if (!o.no_bin) {
+    s.builds = o.bin_builds;
+    s.collections = best_c.empty() ? geometric_collections(p, 1, dmin) : best_c;
+    export_lammps(dir, p, s);
+    const LammpsResult r = run_lammps(lmp, dir, "in.bin.lmp");
+    if (r.ok) {
+      bin_s = r.seconds_per_build(), bin_pairs = r.pairs;
+    } else {
+      out["lammps_bin_error"] = r.error;
+    }
+  }
+  return out;
+}
+
+int run(Options o) {
+  o.spec.placement = parse_placement(o.placement);
+  o.spec.boundary = parse_boundary(o.boundary);
+  if (o.spec.n == 0) throw InputError("n", "must be > 0");
+  const Packing p = cached_packing(o.spec, o.cache);
+  const double n = static_cast<double>(p.size());
+  json j{{"n", p.size()}, {"d", p.d}, {"nu", o.spec.nu}, {"alpha", o.spec.alpha}, {"omega", o.spec.omega},
+         {"placement", o.placement}, {"boundary", o.boundary}, {"seed", o.spec.seed}, {"commit", git_hash()},
+         {"packing", packing_cache_path(o.spec, o.cache)}};
+  std::map<std::string, std::uint64_t> pairs;
+  std::map<std::string, double> secs;
+  const std::vector<double> sizes = model_sizes(p, SizeRequest{"optimal", {}, 1.0}, Search::top_down, 0.2);
+  const double rmax = *std::max_element(p.radii.begin(), p.radii.end());
+  const bool linked = o.linked_cell || (!o.no_linked_cell && p.size() <= 200000);
+  dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
+    constexpr int D = decltype(dim)::value;
+    constexpr Boundary B = decltype(bnd)::value;
+    const auto s = p.spheres<D>();
+    const auto box = p.extent<D>();
+    auto grid_run = [&](const std::vector<double>& sz) {
+      const HGrid<D, B> g(s, box, GridParams{sz, Search::top_down});
+      std::uint64_t c = 0;
+      g.template query<Search::top_down, Uncounted>([&c](std::uint32_t, std::uint32_t) { ++c; });
+      return c;
+    };
+    std::tie(secs["hgrid"], pairs["hgrid"]) = best_of(o.repeats, [&] { return grid_run(sizes); });
+    j["hgrid_sizes"] = sizes;
+    if (linked) std::tie(secs["linked_cell"], pairs["linked_cell"]) = best_of(1, [&] { return grid_run({2 * rmax}); });
+#ifdef HGRID_HAVE_CGAL
+    if (!o.no_cgal)
+      std::tie(secs["cgal"], pairs["cgal"]) =
+          best_of(o.repeats, [&] { return bench::cgal_pairs<D, B>(std::span<const Sphere<D>>(s), box); });
+#else
+    j["cgal_skipped"] = "built without CGAL";
+#endif
+  });
+  if (!linked) j["linked_cell_skipped"] = "N > 2e5 (minutes per build); --linked-cell forces it";
+  const auto lmp = o.no_lammps ? std::nullopt : find_lammps();
+  if (lmp) {
+    if (o.work.empty()) o.work = "results/peers/lammps-n" + std::to_string(p.size());
+    double ms = 0, bs = 0;
+    std::uint64_t mp = 0, bp = 0;
+    j.update(run_lammps_tools(o, p, *lmp, mp, bp, ms, bs));
+    if (ms > 0) secs["lammps_multi"] = ms, pairs["lammps_multi"] = mp;
+    if (bs > 0) secs["lammps_bin"] = bs, pairs["lammps_bin"] = bp;
+  } else {
+    j["lammps_skipped"] = o.no_lammps ? "--no-lammps" : "lmp not on PATH (apt-get install lammps)";
+    std::cerr << "peers: LAMMPS skipped: " << j["lammps_skipped"].get<std::string>() << "\n";
+  }
+  bool agree = true;
+  for (const auto& [name, s] : secs) {
+    j[name] = tool(s, pairs[name], n);
+    if (pairs[name] != pairs["hgrid"]) agree = false;
+    if (name != "hgrid") j["ratio_vs_" + name] = s / secs["hgrid"];
+  }
+  j["pairs_agree"] = agree;
+  if (o.as_json) std::cout << j.dump(2) << "\n";
+  std::FILE* t = o.as_json ? stderr : stdout;
+  std::fprintf(t, "n = %zu, nu = %g, %s, %s; time per build (per particle), pairs, tool time / hgrid time\n", p.size(),
+               o.spec.nu, o.placement.c_str(), o.boundary.c_str());
+  for (const auto& [name, s] : secs)
+    std::fprintf(t, "  %-13s %10.4f s (%8.1f ns)  %12llu pairs  x%.2f\n", name.c_str(), s, 1e9 * s / n,
+                 static_cast<unsigned long long>(pairs[name]), s / secs["hgrid"]);
+  if (!o.csv.empty()) {
+    const bool fresh = !std::filesystem::exists(o.csv);
+    std::FILE* f = std::fopen(o.csv.c_str(), "a");
+    if (!f) throw InputError("csv", "cannot open " + o.csv);
+    if (fresh) std::fprintf(f, "n,nu,placement,tool,seconds_per_build,seconds_per_particle,pairs,ratio_vs_hgrid\n");
+    for (const auto& [name, s] : secs)
+      std::fprintf(f, "%zu,%g,%s,%s,%.6g,%.6g,%llu,%.6g\n", p.size(), o.spec.nu, o.placement.c_str(), name.c_str(), s,
+                   s / n, static_cast<unsigned long long>(pairs[name]), s / secs["hgrid"]);
+    std::fclose(f);
+  }
+  if (!agree) std::cerr << "peers: error: the tools disagree on the pair count\n";
+  return agree ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"hgridlab vs linked cell, CGAL box_intersection_d and LAMMPS neighbor multi/bin"};
+  Options o;
+  o.spec.d = 3, o.spec.nu = 0.6, o.spec.alpha = -3, o.spec.omega = 100, o.spec.progress = true;
+  app.add_option("--n", o.spec.n, "number of particles")->required();
+  app.add_option("--d", o.spec.d, "dimension")->default_val(3);
+  app.add_option("--nu", o.spec.nu, "packing fraction")->default_val(0.6);
+  app.add_option("--alpha", o.spec.alpha, "power-law exponent")->default_val(-3.0);
+  app.add_option("--omega", o.spec.omega, "r_max / r_min")->default_val(100.0);
+  app.add_option("--placement", o.placement, "excluded|random")->default_val("excluded");
+  app.add_option("--boundary", o.boundary, "periodic|walls")->default_val("periodic");
+  app.add_option("--seed", o.spec.seed, "seed")->default_val(1);
+  app.add_option("--cache", o.cache, "packing cache directory")->default_val("results/packings");
+  app.add_option("--work", o.work, "LAMMPS work directory (default results/peers/lammps-nN)");
+  app.add_option("--repeats", o.repeats, "in-process tools: best of this many runs")->default_val(3);
+  app.add_option("--builds", o.builds, "LAMMPS multi: timed builds per run")->default_val(5);
+  app.add_option("--bin-builds", o.bin_builds, "LAMMPS bin: timed builds")->default_val(1);
+  app.add_option("--scan", o.scan, "LAMMPS multi class scan: auto|full|small")->default_val("auto");
+  app.add_option("--csv", o.csv, "append one row per tool to this CSV");
+  app.add_flag("--json", o.as_json, "JSON on stdout (the table goes to stderr)");
+  app.add_flag("--no-cgal", o.no_cgal, "skip CGAL");
+  app.add_flag("--no-lammps", o.no_lammps, "skip LAMMPS");
+  app.add_flag("--no-bin", o.no_bin, "skip LAMMPS bin");
+  app.add_flag("--linked-cell", o.linked_cell, "time the linked cell even above N = 2e5");
+  app.add_flag("--no-linked-cell", o.no_linked_cell, "skip the linked cell");
+  try {
+    app.parse(argc, argv);
+    return run(o);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const InputError& e) {
+    std::cerr << "peers: error: " << e.what() << "\n";
+    return 2;
+  }
+}

@@ -1,0 +1,23 @@
+# hgridlab vs its peers: tool time per neighbour build / hgridlab HGrid time,
+# against the packing fraction (figure-11 packings: 3D, alpha = -3, omega = 100).
+# gnuplot -e "in='results/peers.csv'; out='paper_figs/peers.png'" plots/peers.gp
+if (!exists("fmt")) fmt = 'png'
+if (fmt eq 'pdf') { set terminal pdfcairo enhanced size 6in,4.2in font 'Helvetica,11' } \
+else { set terminal pngcairo enhanced size 900,630 font 'Helvetica,12' }
+set output out
+set datafile separator ','
+set datafile columnheaders
+set key top left box opaque
+set xlabel 'packing fraction {/Symbol n}'
+set ylabel 'time per build / hgridlab HGrid time'
+set logscale y
+set grid
+set xrange [0:0.65]
+set yrange [0.8:*]
+if (!exists("placement")) placement = 'excluded'
+set title sprintf('hgridlab vs peers: {/Symbol a} = -3, {/Symbol w} = 100, d = 3, periodic, %s', placement)
+sel(t, v) = (strcol("tool") eq t && strcol("placement") eq placement) ? v : NaN
+if (!exists("tools")) tools = "lammps_multi lammps_bin cgal"
+plot for [i=1:words(tools)] in using (sel(word(tools,i), column("nu"))):"ratio_vs_hgrid" \
+       smooth unique with linespoints lw 2 pt 7 lc i title word(tools,i) noenhanced, \
+     1 with lines lc rgb 'black' dt 2 title 'hgridlab'

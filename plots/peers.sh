@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# hgridlab vs peers on the figure-11 packings (nu = 0.1 ... 0.6), one bench/peers
+# run per packing, collected in results/peers.csv and drawn as paper_figs/peers.png.
+#   bash plots/peers.sh [N] [placement]      (default N = 100000, excluded: ~15 min;
+#                                           N = 1000000: about an hour)
+# PEERS_FLAGS (default: no linked cell, which takes ~50 s per build at N = 1e5,
+# and the small LAMMPS class scan) is passed on to build/peers.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+N=${1:-100000}
+PLACEMENT=${2:-excluded}
+FLAGS=${PEERS_FLAGS:---no-linked-cell --scan small}
+CSV=results/peers.csv
+mkdir -p results/peers paper_figs
+rm -f "$CSV"
+for nu in 0.1 0.2 0.3 0.4 0.5 0.6; do
+  build/peers --n "$N" --nu "$nu" --placement "$PLACEMENT" --csv "$CSV" --json $FLAGS \
+    > "results/peers/n${N}-nu${nu}-${PLACEMENT}.json"
+done
+gnuplot -e "in='$CSV'; out='paper_figs/peers.png'; placement='$PLACEMENT'" plots/peers.gp
+echo "wrote $CSV and paper_figs/peers.png"

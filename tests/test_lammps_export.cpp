@@ -1,0 +1,176 @@
+// LAMMPS export: data-file content, script options, bad input; and, when `lmp`
+// is on PATH, LAMMPS's pair count (multi and bin) against brute force.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "hgrid/error.hpp"
+#include "hgrid/lammps_export.hpp"
+#include "hgrid/lammps_run.hpp"
+#include "support.hpp"
+
+namespace hgrid::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+template <int D>
+Packing to_packing(const Scene<D>& s, Boundary b) {
+  Packing p;
+  p.d = D;
+  p.boundary = b;
+  for (int a = 0; a < D; ++a) p.box[a] = s.box[a];
+  for (const auto& q : s.spheres) {
+    for (int a = 0; a < D; ++a) p.positions.push_back(q.x[a]);
+    p.radii.push_back(q.r);
+  }
+  return p;
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  for (std::string l; std::getline(ss, l);) out.push_back(l);
+  return out;
+}
+
+template <int D, Boundary B>
+std::uint64_t brute_count(const Scene<D>& s) {
+  std::uint64_t c = 0;
+  brute_force_pairs<D, B>(std::span<const Sphere<D>>(s.spheres), s.box, [&c](std::uint32_t, std::uint32_t) { ++c; });
+  return c;
+}
+
+TEST(LammpsExport, DataFileHandWorked) {
+  Packing p;
+  p.d = 3;
+  p.boundary = Boundary::periodic;
+  p.box = {10, 20, 30};
+  p.positions = {1, 2, 3, 4.5, 5, 6};
+  p.radii = {0.5, 1.25};
+  const auto l = lines(lammps_data(p));
+  ASSERT_GE(l.size(), 13u);
+  EXPECT_EQ(l[2], "2 atoms");
+  EXPECT_EQ(l[3], "1 atom types");
+  EXPECT_EQ(l[5], "0 10 xlo xhi");
+  EXPECT_EQ(l[6], "0 20 ylo yhi");
+  EXPECT_EQ(l[7], "0 30 zlo zhi");
+  EXPECT_EQ(l[9], "Atoms # sphere");
+  EXPECT_EQ(l[11], "1 1 1 1 1 2 3");        // id type diameter density x y z
+  EXPECT_EQ(l[12], "2 1 2.5 1 4.5 5 6");
+}
+
+TEST(LammpsExport, TwoDimensionalAndWalls) {
+  Packing p;
+  p.d = 2;
+  p.boundary = Boundary::walls;
+  p.box = {8, 8, 0};
+  p.positions = {0.1, 8};  // on the top wall: the box is widened a little
+  p.radii = {0.1};
+  const auto l = lines(lammps_data(p));
+  EXPECT_EQ(l[7], "-0.5 0.5 zlo zhi");
+  EXPECT_NE(l[6], "0 8 ylo yhi");
+  EXPECT_EQ(l[11], "1 1 0.20000000000000001 1 0.10000000000000001 8 0");
+  const std::string in = lammps_input(p, LammpsScript{LammpsNeighbor::bin, {}, 3});
+  EXPECT_NE(in.find("dimension 2"), std::string::npos);
+  EXPECT_NE(in.find("boundary f f p"), std::string::npos);
+  EXPECT_NE(in.find("neighbor 0.0 bin"), std::string::npos);
+  EXPECT_NE(in.find("run 3"), std::string::npos);
+}
+
+TEST(LammpsExport, CollectionsAndBadInput) {
+  const auto s = random_scene<3>(50, 0.2, -3, 10, Boundary::periodic, 3);
+  const Packing p = to_packing(s, Boundary::periodic);
+  double rmax = 0;
+  for (double r : p.radii) rmax = std::max(rmax, r);
+  const auto c = geometric_collections(p, 3, 2.0);
+  ASSERT_EQ(c.size(), 3u);
+  EXPECT_DOUBLE_EQ(c.front(), 2.0);
+  EXPECT_DOUBLE_EQ(c.back(), 2 * rmax);
+  const std::string in = lammps_input(p, LammpsScript{LammpsNeighbor::multi, c, 2});
+  EXPECT_NE(in.find("neigh_modify collection/interval 3 2 "), std::string::npos);
+  EXPECT_THROW(lammps_input(p, LammpsScript{LammpsNeighbor::multi, {2.0, rmax}, 2}), InputError);  // < 2 r_max
+  EXPECT_THROW(lammps_input(p, LammpsScript{LammpsNeighbor::multi, {4.0, 3.0, 2 * rmax}, 2}), InputError);
+  EXPECT_THROW(geometric_collections(p, 0, 2.0), InputError);
+  Packing empty;
+  EXPECT_THROW(lammps_data(empty), InputError);
+}
+
+TEST(LammpsExport, LogParsing) {
+  const std::string log =
+      "Loop time of 0.5 on 1 procs for 4 steps with 10 atoms\n\nMPI task timing breakdown:\n"
+      "Section |  min time  |  avg time  |  max time  |%varavg| %total\n"
+      "---------------------------------------------------------------\n"
+      "Pair    | 0.01       | 0.01       | 0.01       |   0.0 |  2.00\n"
+      "Neigh   | 0.4        | 0.4        | 0.4        |   0.0 | 80.00\n"
+      "Comm    | 0.05       | 0.05       | 0.05       |   0.0 | 10.00\n"
+      "Total # of neighbors = 1234\nNeighbor list builds = 4\n";
+  const LammpsResult r = parse_lammps_log(log);
+  EXPECT_TRUE(r.ok);
+  EXPECT_DOUBLE_EQ(r.neigh_seconds, 0.4);
+  EXPECT_DOUBLE_EQ(r.comm_seconds, 0.05);
+  EXPECT_EQ(r.pairs, 1234u);
+  EXPECT_EQ(r.builds, 4u);
+  EXPECT_DOUBLE_EQ(r.seconds_per_build(), 0.1);
+  EXPECT_FALSE(parse_lammps_log("ERROR: Too many neighbor bins (src/nbin_multi.cpp:99)\n").ok);
+}
+
+template <int D, Boundary B>
+void check_with_lammps(double nu, std::uint64_t seed) {
+  const auto lmp = find_lammps();
+  if (!lmp) GTEST_SKIP() << "lmp not on PATH (apt-get install lammps)";
+  const auto s = random_scene<D>(300, nu, -3, 4, B, seed);
+  const Packing p = to_packing(s, B);
+  const fs::path dir = fs::temp_directory_path() / ("hgridlab_lmp_" + std::to_string(::getpid()) + "_" +
+                                                    std::to_string(D) + to_string(B));
+  LammpsScript sc;
+  sc.builds = 2;
+  sc.collections = geometric_collections(p, 3, 2.0);
+  export_lammps(dir.string(), p, sc);
+  const std::uint64_t expected = brute_count<D, B>(s);
+  ASSERT_GT(expected, 0u);
+  for (const char* script : {"in.multi.lmp", "in.bin.lmp"}) {
+    const LammpsResult r = run_lammps(*lmp, dir.string(), script);
+    ASSERT_TRUE(r.ok) << script << ": " << r.error;
+    EXPECT_EQ(r.pairs, expected) << script;
+    EXPECT_EQ(r.builds, 2u) << script;
+  }
+  fs::remove_all(dir);
+}
+
+TEST(LammpsRun, PeriodicPairsEqualBruteForce3D) { check_with_lammps<3, Boundary::periodic>(0.4, 5); }
+TEST(LammpsRun, WallPairsEqualBruteForce3D) { check_with_lammps<3, Boundary::walls>(0.4, 6); }
+TEST(LammpsRun, PeriodicPairsEqualBruteForce2D) { check_with_lammps<2, Boundary::periodic>(0.5, 7); }
+
+}  // namespace
+}  // namespace hgrid::test
+
+namespace hgrid::test {
+namespace {
+
+int hgrid_status(const std::string& args) {
+  const int st = std::system((std::string(HGRID_BINARY) + " " + args + " >/dev/null 2>&1").c_str());
+  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+TEST(LammpsCli, ExportWritesFilesAndRejectsBadInput) {
+  const fs::path dir = fs::temp_directory_path() / ("hgridlab_export_" + std::to_string(::getpid()));
+  const std::string csv = (dir / "p.csv").string();
+  fs::create_directories(dir);
+  std::ofstream(csv) << "# box 10 10 10\n# boundary periodic\nx,y,z,r\n1,1,1,0.5\n2,1,1,0.75\n5,5,5,1\n";
+  EXPECT_EQ(hgrid_status("export " + csv + " --lammps " + (dir / "out").string()), 0);
+  EXPECT_TRUE(fs::exists(dir / "out" / "data.lmp"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "in.multi.lmp"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "in.bin.lmp"));
+  EXPECT_EQ(hgrid_status("export --lammps " + (dir / "x").string()), 2);                           // no packing
+  EXPECT_EQ(hgrid_status("export " + csv + " --lammps " + (dir / "y").string() + " --collections 1,1.5"), 2);  // < d_max = 2
+  EXPECT_FALSE(fs::exists(dir / "y"));
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace hgrid::test
