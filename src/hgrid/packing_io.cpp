@@ -14,7 +14,6 @@
 
 namespace hgrid {
 
-const char* git_hash() { return HGRID_GIT_HASH; }
 const char* compiler_id() { return HGRID_COMPILER; }
 
 double Packing::packing_fraction() const {
