@@ -3,7 +3,8 @@
 set -euo pipefail
 pkgs=(build-essential cmake libgsl-dev libhdf5-dev libbenchmark-dev libgtest-dev
       libcli11-dev libtomlplusplus-dev nlohmann-json3-dev gnuplot-nox
-      lammps)  # lammps: only for the LAMMPS comparison test (skipped without lmp); ~30 s to install
+      lammps libcgal-dev)  # the peers comparison (bench/peers): LAMMPS at run time, CGAL's headers
+                           # at build time; both optional, each skipped with a message when missing
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
