@@ -74,7 +74,7 @@ class HGrid {
            start_.capacity() * sizeof(std::uint32_t) + keys_.capacity() * sizeof(std::uint64_t) +
            slot_bucket_.capacity() * sizeof(std::uint32_t) +
            words_.capacity() * sizeof(std::uint64_t) + rank_.capacity() * sizeof(std::uint32_t) +
-           levels_.capacity() * sizeof(detail::Level<D>);
+           sweep_.capacity() * sizeof(std::uint32_t) + levels_.capacity() * sizeof(detail::Level<D>);
   }
 
  private:
@@ -162,6 +162,10 @@ class HGrid {
 
   template <class Count, class F>
   void cross_level(std::uint32_t p, int h, int j, F& f, Counters& out) const;
+  /// Top-Down cross-level phase: every particle above the lowest level
+  /// searches the levels below it, in the order of sweep_.
+  template <class Count, class F>
+  void top_down_sweep(F& f, Counters& out) const;
 
   GridParams params_;
   Extent<D> box_{};
@@ -174,6 +178,7 @@ class HGrid {
   std::vector<std::uint64_t> words_;     // ranked levels: one bit per cell, set if non-empty
   std::vector<std::uint32_t> rank_;      // ranked levels: set bits before each word (within its level)
   std::vector<std::uint32_t> level_begin_;  // first sorted particle of each level, plus N
+  std::vector<std::uint32_t> sweep_;     // the particles above the lowest level, by their lowest-level cell
 };
 
 }  // namespace hgrid

@@ -158,6 +158,24 @@ HGrid<D, B>::HGrid(std::span<const Sphere<D>> spheres, const Extent<D>& box, con
     if (k + ahead < N) __builtin_prefetch(&spheres[id_[k + ahead]]);
     sorted_[k] = wrapped(id_[k]);
   }
+
+  // The order of the Top-Down cross-level searches: the particles above the
+  // lowest level, all levels interleaved, by the key of their cell on the
+  // lowest level. The lowest level usually holds most particles; searching
+  // it in its own cell order streams it through the cache about once,
+  // instead of once per level above it.
+  const std::size_t n_up = N - level_begin_[std::min(1, L)];
+  if (L > 1 && n_up > 0) {
+    std::vector<std::uint64_t> k0(n_up), tk(n_up);
+    std::vector<std::uint32_t> t(n_up);
+    sweep_.resize(n_up);
+    for (std::size_t i = 0; i < n_up; ++i) {
+      sweep_[i] = static_cast<std::uint32_t>(level_begin_[1] + i);
+      k0[i] = levels_[0].key(levels_[0].cell(sorted_[sweep_[i]].x));
+    }
+    detail::radix_sort_pairs(k0.data(), sweep_.data(), tk.data(), t.data(), n_up,
+                             std::bit_width(levels_[0].cells() - 1));
+  }
 }
 
 }  // namespace hgrid

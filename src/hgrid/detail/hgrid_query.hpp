@@ -208,16 +208,26 @@ Counters HGrid<D, B>::query(F&& f) const {
           out.accesses_by_level[h * L + h] += acc;
           out.checks_by_level[h * L + h] += chk;
         }
-        // Cross-level search (Eqs. 4-5): lower levels (Top-Down) or higher ones (Bottom-Up).
-        if constexpr (S == Search::top_down) {
-          for (int j = 0; j < h; ++j) cross_level<Count>(p, h, j, f, out);
-        } else {
+        // Cross-level search (Eqs. 4-5), Bottom-Up: the levels above. Top-Down
+        // searches the levels below in a second phase, in another order.
+        if constexpr (S == Search::bottom_up) {
           for (int j = h + 1; j < L; ++j) cross_level<Count>(p, h, j, f, out);
         }
       }
     });
   }
+  if constexpr (S == Search::top_down) top_down_sweep<Count>(f, out);
   return out;
+}
+
+template <int D, Boundary B>
+template <class Count, class F>
+void HGrid<D, B>::top_down_sweep(F& f, Counters& out) const {
+  for (const std::uint32_t p : sweep_) {
+    // The level of p: the last level starting at or before it.
+    const int h = static_cast<int>(std::upper_bound(level_begin_.begin(), level_begin_.end(), p) - level_begin_.begin()) - 1;
+    for (int j = 0; j < h; ++j) cross_level<Count>(p, h, j, f, out);
+  }
 }
 
 }  // namespace hgrid
