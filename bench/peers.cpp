@@ -49,6 +49,18 @@ std::pair<double, std::uint64_t> best_of(int repeats, F&& f) {
   return {best, pairs};
 }
 
+/// The 1-minute load average (Linux), or -1: timings under load are not
+/// comparable with idle ones, so every run records it.
+double load_average() {
+  std::FILE* f = std::fopen("/proc/loadavg", "r");
+  double la = -1;
+  if (f) {
+    if (std::fscanf(f, "%lf", &la) != 1) la = -1;
+    std::fclose(f);
+  }
+  return la;
+}
+
 json tool(double seconds, std::uint64_t pairs, double n) {
   return json{{"seconds_per_build", seconds}, {"seconds_per_particle", seconds / n}, {"pairs", pairs}};
 }
@@ -126,6 +138,7 @@ int run(Options o) {
   const double n = static_cast<double>(p.size());
   json j{{"n", p.size()}, {"d", p.d}, {"nu", o.spec.nu}, {"alpha", o.spec.alpha}, {"omega", o.spec.omega},
          {"placement", o.placement}, {"boundary", o.boundary}, {"seed", o.spec.seed}, {"commit", git_hash()},
+         {"load_average_at_start", load_average()},
          {"packing", packing_cache_path(o.spec, o.cache)}};
   std::map<std::string, std::uint64_t> pairs;
   std::map<std::string, double> secs;
@@ -174,10 +187,9 @@ int run(Options o) {
     if (name != "hgrid") j["ratio_vs_" + name] = s / secs["hgrid"];
   }
   j["pairs_agree"] = agree;
-  if (o.as_json) std::cout << j.dump(2) << "\n";
   std::FILE* t = o.as_json ? stderr : stdout;
-  std::fprintf(t, "n = %zu, nu = %g, %s, %s; time per build (per particle), pairs, tool time / hgrid time\n", p.size(),
-               o.spec.nu, o.placement.c_str(), o.boundary.c_str());
+  std::fprintf(t, "n = %zu, nu = %g, %s, %s, load average %.2f; time per build (per particle), pairs, tool time / hgrid time\n",
+               p.size(), o.spec.nu, o.placement.c_str(), o.boundary.c_str(), j["load_average_at_start"].get<double>());
   for (const auto& [name, s] : secs)
     std::fprintf(t, "  %-13s %10.4f s (%8.1f ns)  %12llu pairs  x%.2f\n", name.c_str(), s, 1e9 * s / n,
                  static_cast<unsigned long long>(pairs[name]), s / secs["hgrid"]);
@@ -191,6 +203,8 @@ int run(Options o) {
                    s / n, static_cast<unsigned long long>(pairs[name]), s / secs["hgrid"]);
     std::fclose(f);
   }
+  j["load_average_at_end"] = load_average();
+  if (o.as_json) std::cout << j.dump(2) << "\n";
   if (!agree) std::cerr << "peers: error: the tools disagree on the pair count\n";
   return agree ? 0 : 1;
 }
