@@ -16,8 +16,10 @@ set xrange [0:0.65]
 set yrange [0.8:*]
 if (!exists("placement")) placement = 'excluded'
 set title sprintf('hgridlab vs peers: {/Symbol a} = -3, {/Symbol w} = 100, d = 3, periodic, %s', placement)
-sel(t, v) = (strcol("tool") eq t && strcol("placement") eq placement) ? v : NaN
 if (!exists("tools")) tools = "lammps_multi lammps_bin cgal"
-plot for [i=1:words(tools)] in using (sel(word(tools,i), column("nu"))):"ratio_vs_hgrid" \
-       smooth unique with linespoints lw 2 pt 7 lc i title word(tools,i) noenhanced, \
+# One tool (and placement) at a time, so that its points are joined by lines.
+rows(t) = sprintf("< awk -F, 'NR == 1 || ($4 == \"%s\" && $3 == \"%s\")' '%s'", t, placement, in)
+plot for [i=1:words(tools)] rows(word(tools,i)) using "nu":"ratio_vs_hgrid" \
+       with linespoints lw 2 pt 7 lc i title word(tools,i) noenhanced, \
+     10 with lines lw 2 lc rgb 'gray30' dt 4 title 'target for LAMMPS multi (10x, issue 6)', \
      1 with lines lc rgb 'black' dt 2 title 'hgridlab'
