@@ -191,13 +191,35 @@ TEST(Generate, EquilibrationKeepsRadiiNuAndZeroOverlap) {
   EXPECT_THROW(generate_packing(s), InputError);
 }
 
+/// The estimate's exact limits hold to this (the infinite ratio is 1e12).
+constexpr double kRcpLimitTol = 1e-5;
+/// Regression guard on the 3-D alpha = -3, omega = 100 estimate (0.7803).
+constexpr double kRcpRegressionTol = 1e-3;
+
 TEST(Generate, RcpEstimate) {
   EXPECT_NEAR(estimate_rcp(3, PowerLaw(-3, 1)), kMonoRcp3, 1e-9);
   EXPECT_NEAR(estimate_rcp(2, PowerLaw(0, 1)), kMonoRcp2, 1e-9);
+  // Two sizes of infinite ratio, best mix: 1 - (1 - beta)^2 (0.8704 for spheres).
+  for (const double beta : {kMonoRcp3, kMonoRcp2}) {
+    const std::vector<SizeClass> bi{{1e12, 1 / (2 - beta)}, {1, (1 - beta) / (2 - beta)}};
+    EXPECT_NEAR(virtual_packing_density(bi, beta), 1 - (1 - beta) * (1 - beta), kRcpLimitTol);
+    // Equal sizes in two classes pack as one.
+    EXPECT_NEAR(virtual_packing_density({{2, 0.3}, {2, 0.7}}, beta), beta, 1e-12);
+  }
+  // The reference: about 0.8 for 3-D alpha = -3, omega = 100.
   const double wide = estimate_rcp(3, PowerLaw(-3, 100));
-  EXPECT_GT(wide, 0.75);  // polydispersity packs denser ...
-  EXPECT_LT(wide, 0.95);  // ... but not space-filling
-  EXPECT_GE(estimate_rcp(3, PowerLaw(-3, 100)), estimate_rcp(3, PowerLaw(0, 100)));
+  EXPECT_NEAR(wide, 0.7803, kRcpRegressionTol);
+  EXPECT_LT(wide, 1 - (1 - kMonoRcp3) * (1 - kMonoRcp3));  // a finite ratio packs below the two-scale limit
+  EXPECT_GT(wide, estimate_rcp(3, PowerLaw(-3, 10)));     // wider packs denser
+  EXPECT_GT(estimate_rcp(3, PowerLaw(-3, 10)), kMonoRcp3);
+  EXPECT_GE(wide, estimate_rcp(3, PowerLaw(0, 100)));
+  // Stable at the exponents where a moment is a logarithm (alpha = -1, -d-1).
+  for (const double a : {-1.0, -4.0}) {
+    const double e = estimate_rcp(3, PowerLaw(a, 100));
+    EXPECT_TRUE(e > kMonoRcp3 && e < 0.9) << a << " " << e;
+  }
+  EXPECT_THROW(virtual_packing_density({}, kMonoRcp3), InputError);
+  EXPECT_THROW(virtual_packing_density({{1, 1}}, 1.0), InputError);
 }
 
 TEST(Generate, BadArgumentsAreRejected) {
@@ -227,6 +249,9 @@ TEST(Generate, BadArgumentsAreRejected) {
     EXPECT_EQ(e.field(), "nu");
     EXPECT_NE(std::string(e.what()).find("highest reachable"), std::string::npos) << e.what();
   }
+  // The case the old rod estimate let through (0.896), to stall in the growth.
+  s = spec(3, 1000, 0.8, -3, 100, Placement::excluded);
+  expect_field(s, "nu");
   // Too few particles for the box to hold the largest ones.
   s = spec(3, 3, 0.5, 0, 10, Placement::excluded);
   expect_field(s, "n");

@@ -24,7 +24,7 @@ void run_info(const InfoOptions& o) {
     const auto dist = make_distribution(o.spec);
     const double est = estimate_rcp(o.spec.d, *dist);
     if (o.json) std::cout << nlohmann::json{{"d", o.spec.d}, {"dist", o.spec.dist}, {"rcp_estimate", est}}.dump(2) << "\n";
-    else std::cout << "random close packing estimate (Farr & Groot 2009 rod method): " << est << "\n";
+    else std::cout << "random close packing estimate (de Larrard linear packing model): " << est << "\n";
     return;
   }
   if (o.file.empty()) throw InputError("file", "give a packing file, or --rcp with a distribution");

@@ -72,7 +72,7 @@ void place_random(const PackingSpec& s, detail::GenRng& rng, Packing& p) {
 }
 
 std::string unreachable(const PackingSpec& s, double rcp, const std::string& why) {
-  return why + "; the estimated highest reachable nu (random close packing, Farr & Groot 2009 method) for this " +
+  return why + "; the estimated highest reachable nu (random close packing, de Larrard linear packing model) for this " +
          "distribution is " + brief(std::round(rcp * 1e4) / 1e4) + " (requested " + brief(s.nu) + ")";
 }
 

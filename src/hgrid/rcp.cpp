@@ -2,85 +2,57 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
-#include <vector>
 
 #include "hgrid/error.hpp"
 
 namespace hgrid {
-namespace {
 
-struct RodClass {
-  double length;  // rod length (diameter), in units where the line is 1
-  double share;   // share of the particle volume
-};
-
-/// Gap lengths are merged into log bins of this relative width to bound the work.
-constexpr double kGapBin = 1e-3;
-
-/// Can the rods fill a total length phi of the unit line?
-bool feasible(const std::vector<RodClass>& classes, double phi, double phi_c) {
-  std::map<long, std::pair<double, double>, std::greater<>> gaps;  // bin -> (count, length sum)
-  auto add_gap = [&gaps](double g, double count) {
-    if (count <= 0 || g <= 0) return;
-    const long bin = std::lround(std::log(g) / kGapBin);
-    auto& e = gaps[bin];
-    e.first += count;
-    e.second += count * g;
-  };
-  add_gap(1.0, 1.0);
+double virtual_packing_density(std::vector<SizeClass> classes, double beta) {
+  if (!(beta > 0 && beta < 1)) throw InputError("beta", "must be in (0, 1)");
+  std::erase_if(classes, [](const SizeClass& c) { return !(c.volume_share > 0); });
+  if (classes.empty()) throw InputError("classes", "need at least one size class with a positive volume share");
+  double total = 0;
   for (const auto& c : classes) {
-    double need = phi * c.share;  // length to place
-    std::vector<std::pair<double, double>> produced;  // (sub-gap, count)
-    for (auto it = gaps.begin(); it != gaps.end() && need > 0;) {
-      auto& [count, sum] = it->second;
-      const double g = sum / count;
-            const double n = std::floor(phi_c * g / c.length);
-      if (n < 1) break;  // this gap and every shorter one is too small
-      const double cap = count * n * c.length;
-      const double used = need >= cap ? count : count * need / cap;
-      need -= used * n * c.length;
-      produced.emplace_back((g - n * c.length) / (n + 1), used * (n + 1));
-      count -= used;
-      sum = count * g;
-      if (count <= 1e-300) it = gaps.erase(it);
-      else ++it;
-    }
-    if (need > 1e-12 * phi) return false;
-    for (const auto& [g, k] : produced) add_gap(g, k);
-    // Gaps shorter than the smallest rod can never be used again.
-    const double smallest = classes.back().length;
-    while (!gaps.empty() && gaps.rbegin()->second.second / gaps.rbegin()->second.first < smallest)
-      gaps.erase(std::prev(gaps.end()));
+    if (!(c.diameter > 0) || !std::isfinite(c.diameter)) throw InputError("diameter", "must be positive and finite");
+    total += c.volume_share;
   }
-  return true;
+  std::sort(classes.begin(), classes.end(), [](auto& a, auto& b) { return a.diameter > b.diameter; });
+  const std::size_t n = classes.size();
+  double best = 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double di = classes[i].diameter;
+    double s = 0;
+    for (std::size_t j = 0; j < n; ++j) {
+      const double y = classes[j].volume_share / total, dj = classes[j].diameter;
+      if (dj > di) {  // coarser: wall effect
+        const double b = 1 - std::pow(1 - di / dj, 1.50);
+        s += (1 - beta + b * beta * (1 - 1 / beta)) * y;
+      } else if (dj < di) {  // finer: loosening effect
+        const double a = std::sqrt(1 - std::pow(1 - dj / di, 1.02));
+        s += (1 - a) * y;
+      }
+    }
+    best = std::min(best, beta / (1 - s));
+  }
+  return best;
 }
-
-}  // namespace
 
 double estimate_rcp(int d, const Distribution& dist) {
   if (d != 2 && d != 3) throw InputError("d", "must be 2 or 3");
-  const double phi_c = d == 2 ? kMonoRcp2 : kMonoRcp3;
+  const double beta = d == 2 ? kMonoRcp2 : kMonoRcp3;
   const double lo = dist.r_min(), hi = dist.r_max();
-  if (!(hi > lo * (1 + 1e-9))) return phi_c;
-  // Rod lengths: the line is 1e6 largest diameters long ("infinite").
-  const double unit = 1e-6 / (2 * hi);
-  const double total = dist.moment(d, 0, hi);
-  std::vector<RodClass> classes;
-  for (int i = kRcpClasses - 1; i >= 0; --i) {
+  if (!(hi > lo * (1 + 1e-9))) return beta;
+  std::vector<SizeClass> classes;
+  classes.reserve(kRcpClasses);
+  for (int i = 0; i < kRcpClasses; ++i) {
     const double a = lo * std::pow(hi / lo, static_cast<double>(i) / kRcpClasses);
     const double b = lo * std::pow(hi / lo, static_cast<double>(i + 1) / kRcpClasses);
-    const double m = dist.moment(d, i == 0 ? 0 : a, b);
-    if (m <= 0) continue;
+    const double m = dist.moment(d, i == 0 ? 0 : a, b);  // volume of the class (up to a constant)
+    if (!(m > 0)) continue;
     const double r = dist.moment(d + 1, i == 0 ? 0 : a, b) / m;  // volume-weighted mean radius
-    classes.push_back({2 * r * unit, m / total});
+    classes.push_back({2 * r, m});
   }
-  double ok = phi_c * 0.9, bad = 1.0;
-  while (bad - ok > kRcpTol) {
-    const double mid = 0.5 * (ok + bad);
-    (feasible(classes, mid, phi_c) ? ok : bad) = mid;
-  }
-  return ok;
+  return virtual_packing_density(std::move(classes), beta);
 }
 
 }  // namespace hgrid
