@@ -209,7 +209,7 @@ TEST(Generate, RcpEstimate) {
   // The reference: about 0.8 for 3-D alpha = -3, omega = 100.
   const double wide = estimate_rcp(3, PowerLaw(-3, 100));
   EXPECT_NEAR(wide, 0.7803, kRcpRegressionTol);
-  EXPECT_LT(wide, 1 - (1 - kMonoRcp3) * (1 - kMonoRcp3));  // a finite ratio packs below the two-scale limit
+  EXPECT_LT(wide, 1 - (1 - kMonoRcp3) * (1 - kMonoRcp3));  // here below the two-scale limit
   EXPECT_GT(wide, estimate_rcp(3, PowerLaw(-3, 10)));     // wider packs denser
   EXPECT_GT(estimate_rcp(3, PowerLaw(-3, 10)), kMonoRcp3);
   EXPECT_GE(wide, estimate_rcp(3, PowerLaw(0, 100)));
