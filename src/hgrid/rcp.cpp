@@ -16,7 +16,6 @@ double virtual_packing_density(std::vector<SizeClass> classes, double beta) {
     if (!(c.diameter > 0) || !std::isfinite(c.diameter)) throw InputError("diameter", "must be positive and finite");
     total += c.volume_share;
   }
-  std::sort(classes.begin(), classes.end(), [](auto& a, auto& b) { return a.diameter > b.diameter; });
   const std::size_t n = classes.size();
   double best = 1;
   for (std::size_t i = 0; i < n; ++i) {
@@ -25,10 +24,10 @@ double virtual_packing_density(std::vector<SizeClass> classes, double beta) {
     for (std::size_t j = 0; j < n; ++j) {
       const double y = classes[j].volume_share / total, dj = classes[j].diameter;
       if (dj > di) {  // coarser: wall effect
-        const double b = 1 - std::pow(1 - di / dj, 1.50);
+        const double b = 1 - std::pow(1 - di / dj, kWallExponent);
         s += (1 - beta + b * beta * (1 - 1 / beta)) * y;
       } else if (dj < di) {  // finer: loosening effect
-        const double a = std::sqrt(1 - std::pow(1 - dj / di, 1.02));
+        const double a = std::sqrt(1 - std::pow(1 - dj / di, kLooseningExponent));
         s += (1 - a) * y;
       }
     }

@@ -35,14 +35,18 @@ inline constexpr double kMonoRcp2 = 0.84;
 /// With 240 classes the estimate has converged to 1e-4 (checked from 30 to 480).
 inline constexpr int kRcpClasses = 240;
 
+/// Exponents of the model's loosening (a_ij) and wall-effect (b_ij) functions.
+inline constexpr double kLooseningExponent = 1.02;
+inline constexpr double kWallExponent = 1.50;
+
 /// One size class: its diameter and its share of the particle volume.
 struct SizeClass {
   double diameter;
   double volume_share;
 };
 
-/// The model's virtual packing density for size classes (any order; the
-/// shares are normalised here) whose sizes each pack alone at `beta`.
+/// The model's virtual packing density for size classes (any order: the
+/// model compares diameters, not positions; the shares are normalised here) whose sizes each pack alone at `beta`.
 double virtual_packing_density(std::vector<SizeClass> classes, double beta);
 
 /// The estimate for d = 2 or 3 (declared in generate.hpp as well).
