@@ -85,6 +85,16 @@ void BM_HGridOptimal(benchmark::State& state) {
 void BM_HGridOptimalCounted(benchmark::State& state) {
   run_grid<Counted>(state, fixture(static_cast<std::size_t>(state.range(0))).optimal);
 }
+/// Construction alone (level, cell, sort, directory, gather), to split the
+/// build-plus-query time above into its two parts.
+void BM_HGridBuild(benchmark::State& state) {
+  const auto& f = fixture(static_cast<std::size_t>(state.range(0)));
+  for (auto _ : state) {
+    const Grid grid(f.spheres, f.box, GridParams{f.optimal, Search::top_down});
+    benchmark::DoNotOptimize(grid.size());
+  }
+  set_per_particle(state, static_cast<double>(f.spheres.size()));
+}
 void BM_LinkedCell(benchmark::State& state) { run_grid<Uncounted>(state, {2 * kOmega}); }
 
 void BM_BruteForce(benchmark::State& state) {
@@ -102,6 +112,7 @@ void BM_BruteForce(benchmark::State& state) {
 
 BENCHMARK(BM_HGridOptimal)->Arg(10'000)->Arg(100'000)->Arg(1'000'000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_HGridOptimalCounted)->Arg(10'000)->Arg(100'000)->Arg(1'000'000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HGridBuild)->Arg(1'000'000)->Unit(benchmark::kMillisecond);
 // One level of 2 r_max: O(N m) with m ~ hundreds of particles per cell; 10^6 takes minutes.
 BENCHMARK(BM_LinkedCell)->Arg(10'000)->Arg(100'000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_BruteForce)->Arg(10'000)->Unit(benchmark::kMillisecond);

@@ -1,8 +1,9 @@
 // HGrid construction: level of insertion and cell of every particle, then a
-// stable sort by (level, cell key) and the flat cell directory. Included by
-// hgrid/hgrid.hpp only.
+// stable sort by (level, cell key) in two cache-friendly steps, and the flat
+// cell directory. Included by hgrid/hgrid.hpp only.
 #pragma once
 #include <bit>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -44,53 +45,100 @@ HGrid<D, B>::HGrid(std::span<const Sphere<D>> spheres, const Extent<D>& box, con
     return h;
   };
 
-  // Pass 1: check every particle and count the particles per level.
-  level_begin_.assign(L + 1, 0);
+  // The sort by (level, cell key) runs in two steps, so that neither makes
+  // random accesses over all N particles (which is what bounds a gather or a
+  // full-range scatter by memory latency): a counting sort into coarse
+  // buckets, each one level's run of 2^shift consecutive keys, that moves the
+  // particles themselves (sequential reads, a few hundred write streams);
+  // then, inside each bucket, which fits in the cache, a radix sort of the
+  // low key bits and the permutation of its particles. Both steps are stable.
+  std::vector<int> shift(L);
+  std::vector<std::uint32_t> coarse_base(L + 1, 0);
+  const int coarse_bits = static_cast<int>(std::bit_width(N / detail::kCoarseBucket));
+  for (int h = 0; h < L; ++h) {
+    shift[h] = std::max(0, static_cast<int>(std::bit_width(levels_[h].cells() - 1)) - coarse_bits);
+    coarse_base[h + 1] = coarse_base[h] + static_cast<std::uint32_t>(((levels_[h].cells() - 1) >> shift[h]) + 1);
+  }
+  // Level, cell key (Eq. 1) and coarse bucket of a (wrapped) particle.
+  struct Place {
+    int h;
+    std::uint64_t key;
+    std::uint32_t coarse;
+  };
+  const auto place = [&](const Sphere<D>& p) {
+    const int h = level_of(p.r);
+    const std::uint64_t k = levels_[h].key(levels_[h].cell(p.x));
+    return Place{h, k, coarse_base[h] + static_cast<std::uint32_t>(k >> shift[h])};
+  };
+
+  // Pass 1: check every particle, find its place, count the particles per
+  // coarse bucket.
+  std::vector<std::uint32_t> cursor(coarse_base[L] + 1, 0);
+  const auto key_in = std::unique_ptr<std::uint64_t[]>(new std::uint64_t[N]);  // uninitialised, all written
+  const auto coarse = std::unique_ptr<std::uint32_t[]>(new std::uint32_t[N]);
   double d_max = 0;
   for (std::size_t i = 0; i < N; ++i) {
-    const auto& p = spheres[i];
-    if (!(std::isfinite(p.r) && p.r > 0))
-      throw InputError("radius", "particle " + std::to_string(i) + " has radius " + std::to_string(p.r) +
+    const auto& q = spheres[i];
+    if (!(std::isfinite(q.r) && q.r > 0))
+      throw InputError("radius", "particle " + std::to_string(i) + " has radius " + std::to_string(q.r) +
                                      " (must be finite and > 0)");
     for (int a = 0; a < D; ++a) {
-      if (!std::isfinite(p.x[a]))
+      if (!std::isfinite(q.x[a]))
         throw InputError("position", "particle " + std::to_string(i) + " has a non-finite coordinate");
-      if (B == Boundary::walls && (p.x[a] < 0 || p.x[a] > box[a]))
+      if (B == Boundary::walls && (q.x[a] < 0 || q.x[a] > box[a]))
         throw InputError("position", "particle " + std::to_string(i) + " has its centre outside the walled box [0, " +
                                          std::to_string(box[a]) + "] on axis " + std::to_string(a + 1));
     }
-    d_max = std::max(d_max, 2 * p.r);
-    ++level_begin_[level_of(p.r) + 1];
+    d_max = std::max(d_max, 2 * q.r);
+    const Place pl = place(wrapped(i));
+    key_in[i] = pl.key;
+    coarse[i] = pl.coarse;
+    ++cursor[pl.coarse + 1];
   }
   if (N > 0 && d_max > s.back())
     throw InputError("sizes", "the last cell size " + std::to_string(s.back()) +
                                   " is below the largest diameter " + std::to_string(d_max));
-  for (int h = 0; h < L; ++h) level_begin_[h + 1] += level_begin_[h];
+  for (std::size_t c = 1; c < cursor.size(); ++c) cursor[c] += cursor[c - 1];
+  const std::vector<std::uint32_t> bucket_begin(cursor);
+  level_begin_.resize(L + 1);
+  for (int h = 0; h <= L; ++h) level_begin_[h] = bucket_begin[coarse_base[h]];
 
-  // Pass 2: cell key of every particle (Eq. 1), placed by level (a stable
-  // counting sort), then sorted by key within each level (stable radix sort).
-  std::vector<std::uint64_t> key(N), tkey(N);
-  std::vector<std::uint32_t> tid(N);
+  // Pass 2: move every particle into its coarse bucket.
+  const auto key = std::unique_ptr<std::uint64_t[]>(new std::uint64_t[N]);
   id_.resize(N);
+  sorted_.resize(N);
+  for (std::size_t i = 0; i < N; ++i) {
+    const std::uint32_t at = cursor[coarse[i]]++;
+    sorted_[at] = wrapped(i);
+    key[at] = key_in[i];
+    id_[at] = static_cast<std::uint32_t>(i);
+  }
+
+  // Pass 3: inside each coarse bucket, sort by the low key bits and permute.
   {
-    std::vector<std::uint32_t> next(level_begin_.begin(), level_begin_.end() - 1);
-    for (std::size_t i = 0; i < N; ++i) {
-      const Sphere<D> p = wrapped(i);
-      const int h = level_of(p.r);
-      const std::uint32_t k = next[h]++;
-      key[k] = levels_[h].key(levels_[h].cell(p.x));
-      id_[k] = static_cast<std::uint32_t>(i);
+    std::size_t most = 0;
+    for (std::size_t c = 0; c + 1 < bucket_begin.size(); ++c)
+      most = std::max<std::size_t>(most, bucket_begin[c + 1] - bucket_begin[c]);
+    std::vector<std::uint64_t> tkey(most);
+    std::vector<std::uint32_t> order(most), torder(most), tid(most);
+    std::vector<Sphere<D>> tsph(most);
+    for (int h = 0; h < L; ++h) {
+      for (std::uint32_t c = coarse_base[h]; c < coarse_base[h + 1]; ++c) {
+        const std::uint32_t b = bucket_begin[c], n = bucket_begin[c + 1] - b;
+        if (n < 2) continue;
+        for (std::uint32_t m = 0; m < n; ++m) order[m] = m;
+        detail::radix_sort_pairs(key.get() + b, order.data(), tkey.data(), torder.data(), n, shift[h]);
+        for (std::uint32_t m = 0; m < n; ++m) {
+          tsph[m] = sorted_[b + order[m]];
+          tid[m] = id_[b + order[m]];
+        }
+        std::copy(tsph.begin(), tsph.begin() + n, sorted_.begin() + b);
+        std::copy(tid.begin(), tid.begin() + n, id_.begin() + b);
+      }
     }
   }
-  for (int h = 0; h < L; ++h) {
-    const std::size_t b = level_begin_[h], n = level_begin_[h + 1] - b;
-    const int bits = std::bit_width(levels_[h].cells() - 1);
-    detail::radix_sort_pairs(key.data() + b, id_.data() + b, tkey.data(), tid.data(), n, bits);
-  }
-  tkey = {};
-  tid = {};
 
-  // Pass 3: the directory. One bucket per non-empty cell, in (level, key)
+  // Pass 4: the directory. One bucket per non-empty cell, in (level, key)
   // order; a rank directory per level (one bit per cell, a prefix count per
   // 64 cells), or an open-addressing table of keys if the level is very sparse.
   std::uint64_t words = 0, slots = 0, buckets = 0;
@@ -148,16 +196,6 @@ HGrid<D, B>::HGrid(std::span<const Sphere<D>> spheres, const Extent<D>& box, con
     }
   }
   start_[buckets] = static_cast<std::uint32_t>(N);
-  key = {};
-
-  // Gather the particles in sorted order. Random reads bound by memory
-  // latency: fetch a few iterations ahead.
-  sorted_.resize(N);
-  constexpr std::size_t ahead = 16;
-  for (std::size_t k = 0; k < N; ++k) {
-    if (k + ahead < N) __builtin_prefetch(&spheres[id_[k + ahead]]);
-    sorted_[k] = wrapped(id_[k]);
-  }
 
   // The order of the Top-Down cross-level searches: the particles above the
   // lowest level, all levels interleaved, by the key of their cell on the

@@ -24,6 +24,14 @@ inline constexpr std::int64_t kMaxCellsPerAxis = std::int64_t{1} << 21;
 inline constexpr std::uint64_t kRankCellsPerParticle = 64;
 inline constexpr std::uint64_t kRankMinCells = 1 << 16;
 
+/// Particles per coarse bucket of the construction's first sorting step
+/// (on average; the number of buckets per level is a power of two). Small
+/// enough that a bucket sorts in the cache (~200 KB), large enough that the
+/// first step writes to few streams: at N = 10^6, 3D, 512 to 65536 all
+/// build within 10 % of each other, 4096 the fastest (54 vs 60 ns/particle
+/// at 1024 and 58 at 65536).
+inline constexpr std::uint64_t kCoarseBucket = 4096;
+
 inline std::uint64_t hash_key(std::uint64_t k) { return k * 0x9E3779B97F4A7C15ull; }
 
 template <int D>
