@@ -24,8 +24,7 @@ std::uint64_t HGrid<D, B>::half_stencil(const detail::Level<D>& L, const Coords&
   // first non-zero component is +1, plus the cell +1 of the own row.
   const std::int64_t n = L.n[D - 1];
   auto runs = [&](std::uint64_t k0, std::uint64_t k1) {
-    const std::uint64_t b0 = rank(L, k0), b1 = rank(L, k1);
-    if (b0 != b1) add(start_[b0], start_[b1]);
+    add(start_[rank(L, k0)], start_[rank(L, k1)]);  // possibly empty: no branch here
   };
   auto row = [&](const Coords& rc, std::int64_t lo, std::int64_t hi) {
     if constexpr (B == Boundary::walls) {
@@ -115,9 +114,14 @@ void HGrid<D, B>::cross_level(std::uint32_t p, int h, int j, F& f, Counters& out
     // is one run of keys and its particles one contiguous range, whatever
     // the number of empty cells in it; otherwise look the cells up one by one.
     // The rows' ranges lie far apart in memory: gather a batch of them with
-    // prefetches first, so that their cache misses overlap, then test.
+    // prefetches first, so that their cache misses overlap, then test. Most
+    // rows hold 0 to 4 particles: their indices are appended to one list
+    // without a data-dependent branch, so that the tests run as one loop
+    // instead of one short, unpredictable loop per row.
     constexpr int kBatch = 32;
+    constexpr std::uint32_t kShort = 4;
     std::array<std::pair<std::uint64_t, std::uint64_t>, kBatch> batch;
+    std::array<std::uint32_t, kShort * (kBatch + 1)> cand;
     int n_batch = 0;
     auto flush = [&] {
       std::array<std::pair<std::uint32_t, std::uint32_t>, kBatch> ranges;
@@ -125,14 +129,25 @@ void HGrid<D, B>::cross_level(std::uint32_t p, int h, int j, F& f, Counters& out
         ranges[i] = {start_[batch[i].first], start_[batch[i].second]};
         __builtin_prefetch(&sorted_[ranges[i].first]);
       }
-      for (int i = 0; i < n_batch; ++i) range(ranges[i].first, ranges[i].second);
+      std::uint32_t n_cand = 0;
+      for (int i = 0; i < n_batch; ++i) {
+        const auto [qb, qe] = ranges[i];
+        if (qe - qb <= kShort) {
+          for (std::uint32_t t = 0; t < kShort; ++t) cand[n_cand + t] = qb + t;
+          n_cand += qe - qb;
+        } else {
+          range(qb, qe);
+        }
+      }
+      checked += n_cand;
+      for (std::uint32_t m = 0; m < n_cand; ++m) test<Count>(p, cand[m], f, out);
       n_batch = 0;
     };
     auto runs = [&](std::uint64_t k0, std::uint64_t k1) {
       const std::uint64_t b0 = rank(lv, k0), b1 = rank(lv, k1);
-      if (b0 == b1) return;  // only empty cells
       __builtin_prefetch(&start_[b0]);
-      batch[n_batch++] = {b0, b1};
+      batch[n_batch] = {b0, b1};
+      n_batch += b0 != b1;  // rows of empty cells only are dropped, without a branch
       if (n_batch == kBatch) flush();
     };
     Coords c = lo;
@@ -182,7 +197,12 @@ Counters HGrid<D, B>::query(F&& f) const {
     out.accesses_by_level.assign(L * L, 0);
     out.checks_by_level.assign(L * L, 0);
   }
+  // A cell's half-stencil candidates: short ranges (most, on a sparse level)
+  // as one list of indices appended without a data-dependent branch, longer
+  // ones as ranges.
+  constexpr std::uint32_t kShort = 4;
   std::array<std::pair<std::uint32_t, std::uint32_t>, detail::kHalfStencil<D>> nb;
+  std::array<std::uint32_t, kShort * (detail::kHalfStencil<D> + 1)> cand;
   for (int h = 0; h < L; ++h) {
     const auto& lv = levels_[h];
     detail::KeyWalk<D> walk(lv);
@@ -191,13 +211,20 @@ Counters HGrid<D, B>::query(F&& f) const {
       // Same level (linked cell): the half stencil is shared by the cell's
       // particles; n_nb non-empty ranges holding nb_particles particles.
       int n_nb = 0;
+      std::uint32_t n_cand = 0;
       std::uint64_t nb_particles = 0;
       const std::uint64_t nb_cells = half_stencil(lv, walk.to(key), [&](std::uint32_t qb, std::uint32_t qe) {
-        nb[n_nb++] = {qb, qe};
         nb_particles += qe - qb;
+        if (qe - qb <= kShort) {
+          for (std::uint32_t t = 0; t < kShort; ++t) cand[n_cand + t] = qb + t;
+          n_cand += qe - qb;
+        } else {
+          nb[n_nb++] = {qb, qe};
+        }
       });
       for (std::uint32_t p = beg; p < end; ++p) {
         for (std::uint32_t q = p + 1; q < end; ++q) test<Count>(p, q, f, out);
+        for (std::uint32_t m = 0; m < n_cand; ++m) test<Count>(p, cand[m], f, out);
         for (int m = 0; m < n_nb; ++m)
           for (std::uint32_t q = nb[m].first; q < nb[m].second; ++q) test<Count>(p, q, f, out);
         if constexpr (Count::enabled) {
