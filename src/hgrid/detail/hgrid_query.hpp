@@ -3,6 +3,7 @@
 #pragma once
 #include <array>
 #include <cmath>
+#include <type_traits>
 
 namespace hgrid {
 
@@ -188,7 +189,8 @@ void HGrid<D, B>::cross_level(std::uint32_t p, int h, int j, F& f, Counters& out
 
 template <int D, Boundary B>
 template <Search S, class Count, class F>
-Counters HGrid<D, B>::query(F&& f) const {
+Counters HGrid<D, B>::query(F&& f_user) const {
+  Emit<std::remove_reference_t<F>> f{f_user, id_.data(), {}, 0};
   const int L = levels();
   Counters out;
   out.levels = L;
@@ -244,6 +246,7 @@ Counters HGrid<D, B>::query(F&& f) const {
     });
   }
   if constexpr (S == Search::top_down) top_down_sweep<Count>(f, out);
+  f.flush();
   return out;
 }
 
