@@ -25,6 +25,7 @@ namespace detail {
 
 /// Wraps a coordinate into [0, a) (periodic boundary).
 inline double wrap(double x, double a) {
+  if (x >= 0 && x < a) return x;  // the usual case, exact, and no division
   x -= a * std::floor(x / a);
   return x >= a ? 0.0 : x;  // a tiny negative x can round up to a
 }
