@@ -152,9 +152,8 @@ class HGrid {
   std::uint64_t half_stencil(const detail::Level<D>& L, const Coords& c, Add&& add) const;
 
   /// Buffers the overlapping pairs (as sorted positions) and hands them to
-  /// the callback, as input indices i < j, a batch at a time: the overlap
-  /// test then needs no branch on its outcome, which is hard to predict
-  /// (about one check in six finds a contact in a dense packing).
+  /// the callback, as input indices i < j, a batch at a time, so that an
+  /// overlap test can do without a branch on its outcome.
   template <class F>
   struct Emit {
     F& f;
@@ -170,8 +169,21 @@ class HGrid {
     }
   };
 
+  /// Overlap test of sorted particles p and q; an overlapping pair goes to
+  /// the buffer. Branchy: for long runs of candidates, which rarely overlap
+  /// (a linked cell's cells), where the branch predicts well.
   template <class Count, class E>
   void test(std::uint32_t p, std::uint32_t q, E& e, Counters& out) const {
+    if (detail::overlap<D, B>(sorted_[p], sorted_[q], box_)) {
+      if constexpr (Count::enabled) ++out.contacts;
+      e.buf[e.n++] = {p, q};
+      if (e.n == e.buf.size()) e.flush();
+    }
+  }
+  /// The same without a branch on the outcome: for the short candidate
+  /// lists of sparse levels, where about one check in six overlaps.
+  template <class Count, class E>
+  void test_branchless(std::uint32_t p, std::uint32_t q, E& e, Counters& out) const {
     const bool hit = detail::overlap<D, B>(sorted_[p], sorted_[q], box_);
     if constexpr (Count::enabled) out.contacts += hit;
     e.buf[e.n] = {p, q};

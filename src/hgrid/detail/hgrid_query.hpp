@@ -141,7 +141,7 @@ void HGrid<D, B>::cross_level(std::uint32_t p, int h, int j, F& f, Counters& out
         }
       }
       checked += n_cand;
-      for (std::uint32_t m = 0; m < n_cand; ++m) test<Count>(p, cand[m], f, out);
+      for (std::uint32_t m = 0; m < n_cand; ++m) test_branchless<Count>(p, cand[m], f, out);
       n_batch = 0;
     };
     auto runs = [&](std::uint64_t k0, std::uint64_t k1) {
@@ -226,7 +226,7 @@ Counters HGrid<D, B>::query(F&& f_user) const {
       });
       for (std::uint32_t p = beg; p < end; ++p) {
         for (std::uint32_t q = p + 1; q < end; ++q) test<Count>(p, q, f, out);
-        for (std::uint32_t m = 0; m < n_cand; ++m) test<Count>(p, cand[m], f, out);
+        for (std::uint32_t m = 0; m < n_cand; ++m) test_branchless<Count>(p, cand[m], f, out);
         for (int m = 0; m < n_nb; ++m)
           for (std::uint32_t q = nb[m].first; q < nb[m].second; ++q) test<Count>(p, q, f, out);
         if constexpr (Count::enabled) {
