@@ -146,8 +146,8 @@ class HGrid {
     }
   }
   /// Number of cells of the same-level half stencil of cell c (MODEL.md
-  /// section 1); calls add(begin, end) with the particles of its non-empty
-  /// cells, a row of cells at a time where the level allows it.
+  /// section 1); calls add(begin, end) with the particles of its cells, a
+  /// row of cells at a time where the level allows it (a range may be empty).
   template <class Add>
   std::uint64_t half_stencil(const detail::Level<D>& L, const Coords& c, Add&& add) const;
 

@@ -211,7 +211,8 @@ Counters HGrid<D, B>::query(F&& f_user) const {
     for_each_cell(lv, [&](std::uint64_t b, std::uint64_t key) {
       const std::uint32_t beg = start_[b], end = start_[b + 1];
       // Same level (linked cell): the half stencil is shared by the cell's
-      // particles; n_nb non-empty ranges holding nb_particles particles.
+      // particles, nb_particles of them: n_cand in short ranges, the rest in
+      // n_nb long ones.
       int n_nb = 0;
       std::uint32_t n_cand = 0;
       std::uint64_t nb_particles = 0;
