@@ -68,6 +68,25 @@ TEST(HGridVsBrute, LargerPackings) {
     }
 }
 
+// N above twice the construction's coarse bucket (detail::kCoarseBucket),
+// so that its first sorting step spreads every level over several buckets
+// (the packings above fit in one bucket per level).
+TEST(HGridVsBrute, SeveralCoarseBuckets) {
+  static_assert(detail::kCoarseBucket * 2 <= 12000, "the scenes below must span several coarse buckets");
+  const auto s3 = random_scene<3>(12000, 0.5, -3.0, 100.0, Boundary::periodic, 9001);
+  const auto e3 = brute_pairs<3, Boundary::periodic>(s3);
+  const auto s2 = random_scene<2>(12000, 0.5, 0.0, 10.0, Boundary::walls, 9002);
+  const auto e2 = brute_pairs<2, Boundary::walls>(s2);
+  for (int L : {1, 3, 8}) {
+    SCOPED_TRACE(::testing::Message() << "seeds 9001/9002, L=" << L);
+    const auto z3 = exponential_sizes(L, 1.0, 100.0), z2 = exponential_sizes(L, 1.0, 10.0);
+    EXPECT_EQ((grid_pairs<3, Boundary::periodic, Search::top_down>(s3, z3).first), e3);
+    EXPECT_EQ((grid_pairs<3, Boundary::periodic, Search::bottom_up>(s3, z3).first), e3);
+    EXPECT_EQ((grid_pairs<2, Boundary::walls, Search::top_down>(s2, z2).first), e2);
+    EXPECT_EQ((grid_pairs<2, Boundary::walls, Search::bottom_up>(s2, z2).first), e2);
+  }
+}
+
 // Sizes need not follow any rule: irregular, far apart, far above 2 r_max.
 TEST(HGridVsBrute, IrregularSizes) {
   const auto s = random_scene<3>(800, 0.4, -2.0, 20.0, Boundary::periodic, 4242);
