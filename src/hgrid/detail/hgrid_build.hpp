@@ -59,16 +59,16 @@ HGrid<D, B>::HGrid(std::span<const Sphere<D>> spheres, const Extent<D>& box, con
     shift[h] = std::max(0, static_cast<int>(std::bit_width(levels_[h].cells() - 1)) - coarse_bits);
     coarse_base[h + 1] = coarse_base[h] + static_cast<std::uint32_t>(((levels_[h].cells() - 1) >> shift[h]) + 1);
   }
-  // Level, cell key (Eq. 1) and coarse bucket of a (wrapped) particle.
+  // Cell key (Eq. 1) on its level of insertion, and coarse bucket, of a
+  // (wrapped) particle.
   struct Place {
-    int h;
     std::uint64_t key;
     std::uint32_t coarse;
   };
   const auto place = [&](const Sphere<D>& p) {
     const int h = level_of(p.r);
     const std::uint64_t k = levels_[h].key(levels_[h].cell(p.x));
-    return Place{h, k, coarse_base[h] + static_cast<std::uint32_t>(k >> shift[h])};
+    return Place{k, coarse_base[h] + static_cast<std::uint32_t>(k >> shift[h])};
   };
 
   // Pass 1: check every particle, find its place, count the particles per
