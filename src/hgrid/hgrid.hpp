@@ -151,6 +151,20 @@ class HGrid {
   template <class Add>
   std::uint64_t half_stencil(const detail::Level<D>& L, const Coords& c, Add&& add) const;
 
+  /// Candidate ranges of at most this many particles are appended to an
+  /// index list without a branch on their length (see append_short).
+  static constexpr std::uint32_t kShortRange = 4;
+  /// Appends the range [qb, qe) to cand at n if it is short (returns true),
+  /// with a fixed kShortRange-wide store: cand needs kShortRange free entries
+  /// past n whatever the range's length.
+  template <std::size_t C>
+  static bool append_short(std::array<std::uint32_t, C>& cand, std::uint32_t& n, std::uint32_t qb, std::uint32_t qe) {
+    if (qe - qb > kShortRange) return false;
+    for (std::uint32_t t = 0; t < kShortRange; ++t) cand[n + t] = qb + t;
+    n += qe - qb;
+    return true;
+  }
+
   /// Buffers the overlapping pairs (as sorted positions) and hands them to
   /// the callback, as input indices i < j, a batch at a time, so that an
   /// overlap test can do without a branch on its outcome.

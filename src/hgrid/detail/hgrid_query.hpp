@@ -120,9 +120,8 @@ void HGrid<D, B>::cross_level(std::uint32_t p, int h, int j, F& f, Counters& out
     // without a data-dependent branch, so that the tests run as one loop
     // instead of one short, unpredictable loop per row.
     constexpr int kBatch = 32;
-    constexpr std::uint32_t kShort = 4;
     std::array<std::pair<std::uint64_t, std::uint64_t>, kBatch> batch;
-    std::array<std::uint32_t, kShort * (kBatch + 1)> cand;
+    std::array<std::uint32_t, kShortRange * (kBatch + 1)> cand;
     int n_batch = 0;
     auto flush = [&] {
       std::array<std::pair<std::uint32_t, std::uint32_t>, kBatch> ranges;
@@ -133,12 +132,7 @@ void HGrid<D, B>::cross_level(std::uint32_t p, int h, int j, F& f, Counters& out
       std::uint32_t n_cand = 0;
       for (int i = 0; i < n_batch; ++i) {
         const auto [qb, qe] = ranges[i];
-        if (qe - qb <= kShort) {
-          for (std::uint32_t t = 0; t < kShort; ++t) cand[n_cand + t] = qb + t;
-          n_cand += qe - qb;
-        } else {
-          range(qb, qe);
-        }
+        if (!append_short(cand, n_cand, qb, qe)) range(qb, qe);
       }
       checked += n_cand;
       for (std::uint32_t m = 0; m < n_cand; ++m) test_branchless<Count>(p, cand[m], f, out);
@@ -202,9 +196,8 @@ Counters HGrid<D, B>::query(F&& f_user) const {
   // A cell's half-stencil candidates: short ranges (most, on a sparse level)
   // as one list of indices appended without a data-dependent branch, longer
   // ones as ranges.
-  constexpr std::uint32_t kShort = 4;
   std::array<std::pair<std::uint32_t, std::uint32_t>, detail::kHalfStencil<D>> nb;
-  std::array<std::uint32_t, kShort * (detail::kHalfStencil<D> + 1)> cand;
+  std::array<std::uint32_t, kShortRange * (detail::kHalfStencil<D> + 1)> cand;
   for (int h = 0; h < L; ++h) {
     const auto& lv = levels_[h];
     detail::KeyWalk<D> walk(lv);
@@ -218,12 +211,7 @@ Counters HGrid<D, B>::query(F&& f_user) const {
       std::uint64_t nb_particles = 0;
       const std::uint64_t nb_cells = half_stencil(lv, walk.to(key), [&](std::uint32_t qb, std::uint32_t qe) {
         nb_particles += qe - qb;
-        if (qe - qb <= kShort) {
-          for (std::uint32_t t = 0; t < kShort; ++t) cand[n_cand + t] = qb + t;
-          n_cand += qe - qb;
-        } else {
-          nb[n_nb++] = {qb, qe};
-        }
+        if (!append_short(cand, n_cand, qb, qe)) nb[n_nb++] = {qb, qe};
       });
       for (std::uint32_t p = beg; p < end; ++p) {
         for (std::uint32_t q = p + 1; q < end; ++q) test<Count>(p, q, f, out);
