@@ -145,11 +145,21 @@ class HGrid {
       g(row + u(lo), row + u(hi + 1));
     }
   }
-  /// Number of cells of the same-level half stencil of cell c (MODEL.md
-  /// section 1); calls add(begin, end) with the particles of its cells, a
-  /// row of cells at a time where the level allows it (a range may be empty).
+  /// Key offsets, from a cell to the rows of its half stencil (the offsets
+  /// of the axes before the row axis D-1 whose first non-zero component is
+  /// +1), valid on a ranked level with at least 3 cells per periodic axis.
+  struct StencilRows {
+    std::array<std::int64_t, detail::kHalfStencil<D - 1>> delta{};
+    bool valid = false;
+  };
+  static StencilRows stencil_rows(const detail::Level<D>& L);
+  /// Number of cells of the same-level half stencil of the non-empty cell
+  /// with coordinates c, key and bucket b (MODEL.md section 1); calls
+  /// add(begin, end) with the particles of its cells, a row of cells at a
+  /// time where the level allows it (a range may be empty).
   template <class Add>
-  std::uint64_t half_stencil(const detail::Level<D>& L, const Coords& c, Add&& add) const;
+  std::uint64_t half_stencil(const detail::Level<D>& L, const StencilRows& rows, const Coords& c,
+                             std::uint64_t key, std::uint64_t b, Add&& add) const;
 
   /// Candidate ranges of at most this many particles are appended to an
   /// index list without a branch on their length (see append_short).

@@ -8,8 +8,35 @@
 namespace hgrid {
 
 template <int D, Boundary B>
+auto HGrid<D, B>::stencil_rows(const detail::Level<D>& L) -> StencilRows {
+  StencilRows out;
+  out.valid = L.ranked && !(B == Boundary::periodic && L.small_periodic);
+  static constexpr auto offsets = detail::half_offsets<D - 1>();
+  for (std::size_t m = 0; m < offsets.size(); ++m) {
+    std::int64_t dk = 0;  // key = ((c_0 n_1) + c_1) n_2 + c_2 in 3D
+    for (int a = 0; a + 1 < D; ++a) dk = (dk + offsets[m][a]) * L.n[a + 1];
+    out.delta[m] = dk;
+  }
+  return out;
+}
+
+template <int D, Boundary B>
 template <class Add>
-std::uint64_t HGrid<D, B>::half_stencil(const detail::Level<D>& L, const Coords& c, Add&& add) const {
+std::uint64_t HGrid<D, B>::half_stencil(const detail::Level<D>& L, const StencilRows& rows, const Coords& c,
+                                        std::uint64_t key, std::uint64_t b, Add&& add) const {
+  // Interior cell (not on the first or last cell of any axis): no row wraps
+  // or is clipped, so each row is the run of keys key + delta - 1 .. + 1,
+  // and the own row's +1 cell starts right after the own bucket.
+  bool interior = rows.valid;
+  for (int a = 0; a < D; ++a) interior = interior && c[a] >= 1 && c[a] + 1 < L.n[a];
+  if (interior) {
+    for (const std::int64_t dk : rows.delta) {
+      const std::uint64_t k0 = key + static_cast<std::uint64_t>(dk) - 1;
+      add(start_[rank(L, k0)], start_[rank(L, k0 + 3)]);  // possibly empty: no branch here
+    }
+    add(start_[b + 1], start_[rank(L, key + 2)]);
+    return detail::kHalfStencil<D>;
+  }
   std::uint64_t cells = 0;
   if (!L.ranked || (B == Boundary::periodic && L.small_periodic)) {
     detail::for_each_half_neighbour<D, B>(L, c, [&](const Coords& nc) {
@@ -201,6 +228,7 @@ Counters HGrid<D, B>::query(F&& f_user) const {
   for (int h = 0; h < L; ++h) {
     const auto& lv = levels_[h];
     detail::KeyWalk<D> walk(lv);
+    const StencilRows rows = stencil_rows(lv);
     for_each_cell(lv, [&](std::uint64_t b, std::uint64_t key) {
       const std::uint32_t beg = start_[b], end = start_[b + 1];
       // Same level (linked cell): the half stencil is shared by the cell's
@@ -209,7 +237,7 @@ Counters HGrid<D, B>::query(F&& f_user) const {
       int n_nb = 0;
       std::uint32_t n_cand = 0;
       std::uint64_t nb_particles = 0;
-      const std::uint64_t nb_cells = half_stencil(lv, walk.to(key), [&](std::uint32_t qb, std::uint32_t qe) {
+      const std::uint64_t nb_cells = half_stencil(lv, rows, walk.to(key), key, b, [&](std::uint32_t qb, std::uint32_t qe) {
         nb_particles += qe - qb;
         if (!append_short(cand, n_cand, qb, qe)) nb[n_nb++] = {qb, qe};
       });
