@@ -172,30 +172,45 @@ void HGrid<D, B>::cross_level(std::uint32_t p, int h, int j, F& f, Counters& out
       n_batch += b0 != b1;  // rows of empty cells only are dropped, without a branch
       if (n_batch == kBatch) flush();
     };
-    Coords c = lo;
-    for (;;) {
-      Coords w = c;
-      if constexpr (B == Boundary::periodic) {
-        for (int a = 0; a + 1 < D; ++a)
-          if (wrap[a]) w[a] = c[a] < 0 ? c[a] + lv.n[a] : (c[a] >= lv.n[a] ? c[a] - lv.n[a] : c[a]);
+    // A box inside the level on a ranked level: its rows are runs of keys
+    // a fixed stride apart, without wraps (the usual case).
+    bool in_box = lv.ranked;
+    for (int a = 0; a < D; ++a) in_box = in_box && lo[a] >= 0 && hi[a] < lv.n[a];
+    if (in_box) {
+      const std::uint64_t len = static_cast<std::uint64_t>(hi[D - 1] - lo[D - 1] + 1);
+      const std::uint64_t stride = static_cast<std::uint64_t>(lv.n[D - 1]);  // between rows along axis D-2
+      const std::uint64_t rows = static_cast<std::uint64_t>(hi[D - 2] - lo[D - 2] + 1);
+      for (std::int64_t x = lo[0]; x <= (D == 3 ? hi[0] : lo[0]); ++x) {  // 3D: the planes along axis 0
+        Coords first = lo;
+        first[0] = x;
+        const std::uint64_t k = lv.key(first);
+        for (std::uint64_t m = 0; m < rows; ++m) runs(k + m * stride, k + m * stride + len);
       }
-      if (lv.ranked) {
-        w[D - 1] = 0;
-        row_runs(lv.key(w), lo[D - 1], hi[D - 1], lv.n[D - 1], runs);
-      } else {
-        const std::int64_t n = lv.n[D - 1];
-        for (std::int64_t k = lo[D - 1]; k <= hi[D - 1]; ++k) {
-          w[D - 1] = k < 0 ? k + n : (k >= n ? k - n : k);
-          const auto [qb, qe] = cell_range(lv, w);
-          range(qb, qe);
+    } else {
+      for (Coords c = lo;;) {
+        Coords w = c;
+        if constexpr (B == Boundary::periodic) {
+          for (int a = 0; a + 1 < D; ++a)
+            if (wrap[a]) w[a] = c[a] < 0 ? c[a] + lv.n[a] : (c[a] >= lv.n[a] ? c[a] - lv.n[a] : c[a]);
         }
+        if (lv.ranked) {
+          w[D - 1] = 0;
+          row_runs(lv.key(w), lo[D - 1], hi[D - 1], lv.n[D - 1], runs);
+        } else {
+          const std::int64_t n = lv.n[D - 1];
+          for (std::int64_t k = lo[D - 1]; k <= hi[D - 1]; ++k) {
+            w[D - 1] = k < 0 ? k + n : (k >= n ? k - n : k);
+            const auto [qb, qe] = cell_range(lv, w);
+            range(qb, qe);
+          }
+        }
+        int a = D - 2;
+        for (; a >= 0; --a) {
+          if (++c[a] <= hi[a]) break;
+          c[a] = lo[a];
+        }
+        if (a < 0) break;
       }
-      int a = D - 2;
-      for (; a >= 0; --a) {
-        if (++c[a] <= hi[a]) break;
-        c[a] = lo[a];
-      }
-      if (a < 0) break;
     }
     flush();
   }
