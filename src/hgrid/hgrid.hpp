@@ -12,6 +12,7 @@
 #include "hgrid/counters.hpp"
 #include "hgrid/detail/levels.hpp"
 #include "hgrid/detail/stencil.hpp"
+#include "hgrid/detail/uninit_allocator.hpp"
 #include "hgrid/error.hpp"
 #include "hgrid/geometry.hpp"
 #include "hgrid/params.hpp"
@@ -225,8 +226,8 @@ class HGrid {
   GridParams params_;
   Extent<D> box_{};
   std::vector<detail::Level<D>> levels_;
-  std::vector<Sphere<D>> sorted_;        // particles sorted by (level, cell)
-  std::vector<std::uint32_t> id_;        // input index of each sorted particle
+  std::vector<Sphere<D>, detail::UninitAllocator<Sphere<D>>> sorted_;  // particles sorted by (level, cell)
+  std::vector<std::uint32_t, detail::UninitAllocator<std::uint32_t>> id_;  // input index of each sorted particle
   std::vector<std::uint32_t> start_;     // bucket -> first sorted particle; one past the last bucket too
   std::vector<std::uint64_t> keys_;      // cell keys of the hashed levels' tables
   std::vector<std::uint32_t> slot_bucket_;  // bucket (within its level) of each table slot

@@ -1,0 +1,32 @@
+// An allocator for the HGrid's large arrays, whose construction writes every
+// element exactly once: resize() leaves trivial elements unwritten instead of
+// zeroing them first (a whole pass over tens of MB at N = 10^6).
+#pragma once
+#include <memory>
+#include <new>
+#include <utility>
+
+namespace hgrid::detail {
+
+template <class T>
+struct UninitAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = UninitAllocator<U>;
+  };
+  UninitAllocator() = default;
+  template <class U>
+  UninitAllocator(const UninitAllocator<U>&) noexcept {}
+  /// Value-initialisation (resize, the vector(n) constructor) becomes
+  /// default-initialisation; everything else constructs as usual.
+  template <class U>
+  void construct(U* p) noexcept(noexcept(::new(static_cast<void*>(p)) U)) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... A>
+  void construct(U* p, A&&... a) {
+    ::new (static_cast<void*>(p)) U(std::forward<A>(a)...);
+  }
+};
+
+}  // namespace hgrid::detail
