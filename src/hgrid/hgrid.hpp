@@ -228,7 +228,7 @@ class HGrid {
   std::vector<detail::Level<D>> levels_;
   std::vector<Sphere<D>, detail::UninitAllocator<Sphere<D>>> sorted_;  // particles sorted by (level, cell)
   std::vector<std::uint32_t, detail::UninitAllocator<std::uint32_t>> id_;  // input index of each sorted particle
-  std::vector<std::uint32_t> start_;     // bucket -> first sorted particle; one past the last bucket too
+  std::vector<std::uint32_t, detail::UninitAllocator<std::uint32_t>> start_;  // bucket -> first sorted particle; one past the last bucket too
   std::vector<std::uint64_t> keys_;      // cell keys of the hashed levels' tables
   std::vector<std::uint32_t> slot_bucket_;  // bucket (within its level) of each table slot
   std::vector<std::uint64_t> words_;     // ranked levels: one bit per cell, set if non-empty

@@ -114,42 +114,13 @@ HGrid<D, B>::HGrid(std::span<const Sphere<D>> spheres, const Extent<D>& box, con
     id_[at] = static_cast<std::uint32_t>(i);
   }
 
-  // Pass 3: inside each coarse bucket, sort by the low key bits and permute.
-  {
-    std::size_t most = 0;
-    for (std::size_t c = 0; c + 1 < bucket_begin.size(); ++c)
-      most = std::max<std::size_t>(most, bucket_begin[c + 1] - bucket_begin[c]);
-    std::vector<std::uint64_t> tkey(most);
-    std::vector<std::uint32_t> order(most), torder(most), tid(most);
-    std::vector<Sphere<D>> tsph(most);
-    for (int h = 0; h < L; ++h) {
-      for (std::uint32_t c = coarse_base[h]; c < coarse_base[h + 1]; ++c) {
-        const std::uint32_t b = bucket_begin[c], n = bucket_begin[c + 1] - b;
-        if (n < 2) continue;
-        for (std::uint32_t m = 0; m < n; ++m) order[m] = m;
-        detail::radix_sort_pairs(key.get() + b, order.data(), tkey.data(), torder.data(), n, shift[h]);
-        for (std::uint32_t m = 0; m < n; ++m) {
-          tsph[m] = sorted_[b + order[m]];
-          tid[m] = id_[b + order[m]];
-        }
-        std::copy(tsph.begin(), tsph.begin() + n, sorted_.begin() + b);
-        std::copy(tid.begin(), tid.begin() + n, id_.begin() + b);
-      }
-    }
-  }
-
-  // Pass 4: the directory. One bucket per non-empty cell, in (level, key)
-  // order; a rank directory per level (one bit per cell, a prefix count per
-  // 64 cells), or an open-addressing table of keys if the level is very sparse.
-  std::uint64_t words = 0, slots = 0, buckets = 0;
+  // The directory's layout per level, from the particle counts: a rank
+  // directory (one bit per cell, a prefix count per 64 cells), or an
+  // open-addressing table of keys if the level is very sparse.
+  std::uint64_t words = 0, slots = 0;
   for (int h = 0; h < L; ++h) {
     auto& lv = levels_[h];
     const std::uint64_t n_h = level_begin_[h + 1] - level_begin_[h];
-    lv.buckets = 0;
-    for (std::uint32_t k = level_begin_[h]; k < level_begin_[h + 1]; ++k)
-      lv.buckets += k == level_begin_[h] || key[k] != key[k - 1];
-    lv.bucket_base = buckets;
-    buckets += lv.buckets;
     lv.ranked = lv.cells() <= detail::kRankCellsPerParticle * n_h + detail::kRankMinCells;
     if (lv.ranked) {
       lv.word_base = words;
@@ -158,44 +129,72 @@ HGrid<D, B>::HGrid(std::span<const Sphere<D>> spheres, const Extent<D>& box, con
     } else {
       std::uint64_t size = 16;
       int bits = 4;
-      while (size < 2 * lv.buckets) size <<= 1, ++bits;
+      while (size < 2 * n_h) size <<= 1, ++bits;  // at most n_h non-empty cells
       lv.slots = size;
       lv.shift = 64 - bits;
       lv.key_base = slots;
       slots += size;
     }
   }
-  if (buckets >= (std::uint64_t{1} << 32) - 1) throw InputError("sizes", "too many cells for one grid");
   words_.assign(words, 0);
-  rank_.assign(words, 0);
+  rank_.resize(words);
   keys_.assign(slots, detail::kEmptyKey);
   slot_bucket_.assign(slots, 0);
-  start_.resize(buckets + 1);
-  for (int h = 0; h < L; ++h) {
-    const auto& lv = levels_[h];
-    std::uint64_t b = lv.bucket_base;
-    for (std::uint32_t k = level_begin_[h]; k < level_begin_[h + 1]; ++k) {
-      if (k != level_begin_[h] && key[k] == key[k - 1]) continue;
-      start_[b] = k;
-      if (lv.ranked) {
-        words_[lv.word_base + (key[k] >> 6)] |= std::uint64_t{1} << (key[k] & 63);
-      } else {
-        std::uint64_t slot = detail::hash_key(key[k]) >> lv.shift;
-        while (keys_[lv.key_base + slot] != detail::kEmptyKey) slot = (slot + 1) & (lv.slots - 1);
-        keys_[lv.key_base + slot] = key[k];
-        slot_bucket_[lv.key_base + slot] = static_cast<std::uint32_t>(b - lv.bucket_base);
+  start_.resize(N + 1);  // at most one bucket per particle; trimmed below
+
+  // Pass 3: inside each coarse bucket, sort by the low key bits and permute;
+  // then, while the bucket is in the cache, one directory bucket per
+  // non-empty cell, in (level, key) order.
+  std::uint64_t buckets = 0;
+  {
+    std::size_t most = 0;
+    for (std::size_t c = 0; c + 1 < bucket_begin.size(); ++c)
+      most = std::max<std::size_t>(most, bucket_begin[c + 1] - bucket_begin[c]);
+    std::vector<std::uint64_t> tkey(most);
+    std::vector<std::uint32_t> order(most), torder(most), tid(most);
+    std::vector<Sphere<D>> tsph(most);
+    for (int h = 0; h < L; ++h) {
+      auto& lv = levels_[h];
+      lv.bucket_base = buckets;
+      for (std::uint32_t c = coarse_base[h]; c < coarse_base[h + 1]; ++c) {
+        const std::uint32_t b = bucket_begin[c], n = bucket_begin[c + 1] - b;
+        const std::uint64_t* k = key.get() + b;
+        if (n >= 2) {
+          for (std::uint32_t m = 0; m < n; ++m) order[m] = m;
+          detail::radix_sort_pairs(key.get() + b, order.data(), tkey.data(), torder.data(), n, shift[h]);
+          for (std::uint32_t m = 0; m < n; ++m) {
+            tsph[m] = sorted_[b + order[m]];
+            tid[m] = id_[b + order[m]];
+          }
+          std::copy(tsph.begin(), tsph.begin() + n, sorted_.begin() + b);
+          std::copy(tid.begin(), tid.begin() + n, id_.begin() + b);
+        }
+        for (std::uint32_t m = 0; m < n; ++m) {
+          if (m > 0 && k[m] == k[m - 1]) continue;
+          start_[buckets] = b + m;
+          if (lv.ranked) {
+            words_[lv.word_base + (k[m] >> 6)] |= std::uint64_t{1} << (k[m] & 63);
+          } else {
+            std::uint64_t slot = detail::hash_key(k[m]) >> lv.shift;
+            while (keys_[lv.key_base + slot] != detail::kEmptyKey) slot = (slot + 1) & (lv.slots - 1);
+            keys_[lv.key_base + slot] = k[m];
+            slot_bucket_[lv.key_base + slot] = static_cast<std::uint32_t>(buckets - lv.bucket_base);
+          }
+          ++buckets;
+        }
       }
-      ++b;
-    }
-    if (lv.ranked) {
-      std::uint32_t r = 0;
-      for (std::uint64_t w = 0; w < lv.words; ++w) {
-        rank_[lv.word_base + w] = r;
-        r += static_cast<std::uint32_t>(std::popcount(words_[lv.word_base + w]));
+      lv.buckets = buckets - lv.bucket_base;
+      if (lv.ranked) {
+        std::uint32_t r = 0;
+        for (std::uint64_t w = 0; w < lv.words; ++w) {
+          rank_[lv.word_base + w] = r;
+          r += static_cast<std::uint32_t>(std::popcount(words_[lv.word_base + w]));
+        }
       }
     }
   }
   start_[buckets] = static_cast<std::uint32_t>(N);
+  start_.resize(buckets + 1);
 
   // The order of the Top-Down cross-level searches: the particles above the
   // lowest level, all levels interleaved, by the key of their cell on the
