@@ -152,6 +152,10 @@ class HGrid {
   struct StencilRows {
     std::array<std::int64_t, detail::kHalfStencil<D - 1>> delta{};
     bool valid = false;
+    /// Periodic level with at least 5 cells per axis: between an interior
+    /// cell and its neighbours |dx| < 2 s + rounding < A / 2 on every axis,
+    /// so the minimum image is the plain difference.
+    bool plain_dx = false;
   };
   static StencilRows stencil_rows(const detail::Level<D>& L);
   /// Number of cells of the same-level half stencil of the non-empty cell
@@ -197,9 +201,11 @@ class HGrid {
   /// Overlap test of sorted particles p and q; an overlapping pair goes to
   /// the buffer. Branchy: for long runs of candidates, which rarely overlap
   /// (a linked cell's cells), where the branch predicts well.
-  template <class Count, class E>
+  /// TB = walls skips the minimum image where it cannot change the
+  /// displacement (same result, bit for bit).
+  template <class Count, Boundary TB = B, class E>
   void test(std::uint32_t p, std::uint32_t q, E& e, Counters& out) const {
-    if (detail::overlap<D, B>(sorted_[p], sorted_[q], box_)) {
+    if (detail::overlap<D, TB>(sorted_[p], sorted_[q], box_)) {
       if constexpr (Count::enabled) ++out.contacts;
       e.buf[e.n++] = {p, q};
       if (e.n == e.buf.size()) e.flush();
@@ -207,9 +213,9 @@ class HGrid {
   }
   /// The same without a branch on the outcome: for the short candidate
   /// lists of sparse levels, where about one check in six overlaps.
-  template <class Count, class E>
+  template <class Count, Boundary TB = B, class E>
   void test_branchless(std::uint32_t p, std::uint32_t q, E& e, Counters& out) const {
-    const bool hit = detail::overlap<D, B>(sorted_[p], sorted_[q], box_);
+    const bool hit = detail::overlap<D, TB>(sorted_[p], sorted_[q], box_);
     if constexpr (Count::enabled) out.contacts += hit;
     e.buf[e.n] = {p, q};
     e.n += hit;

@@ -11,6 +11,8 @@ template <int D, Boundary B>
 auto HGrid<D, B>::stencil_rows(const detail::Level<D>& L) -> StencilRows {
   StencilRows out;
   out.valid = L.ranked && !(B == Boundary::periodic && L.small_periodic);
+  out.plain_dx = B == Boundary::periodic;
+  for (int a = 0; a < D; ++a) out.plain_dx = out.plain_dx && L.n[a] >= 5;
   static constexpr auto offsets = detail::half_offsets<D - 1>();
   for (std::size_t m = 0; m < offsets.size(); ++m) {
     std::int64_t dk = 0;  // key = ((c_0 n_1) + c_1) n_2 + c_2 in 3D
@@ -114,9 +116,17 @@ void HGrid<D, B>::cross_level(std::uint32_t p, int h, int j, F& f, Counters& out
   }
   std::uint64_t accessed = 1, checked = 0;
   for (int a = 0; a < D; ++a) accessed *= static_cast<std::uint64_t>(hi[a] - lo[a] + 1);
+  // Periodic: a box that neither wraps nor spans half an axis, where every
+  // candidate is nearer than A / 2 and the minimum image is the plain difference.
+  bool plain = B == Boundary::periodic;
+  for (int a = 0; a < D; ++a) plain = plain && !wrap[a] && lo[a] >= 0 && hi[a] < lv.n[a] && 2 * (hi[a] - lo[a] + 1) < lv.n[a];
   auto range = [&](std::uint32_t qb, std::uint32_t qe) {
     checked += qe - qb;
-    for (std::uint32_t q = qb; q < qe; ++q) test<Count>(p, q, f, out);
+    if (plain) {
+      for (std::uint32_t q = qb; q < qe; ++q) test<Count, Boundary::walls>(p, q, f, out);
+    } else {
+      for (std::uint32_t q = qb; q < qe; ++q) test<Count>(p, q, f, out);
+    }
   };
   const std::uint32_t first = level_begin_[j], last = level_begin_[j + 1];
   if (accessed > last - first) {
@@ -162,7 +172,11 @@ void HGrid<D, B>::cross_level(std::uint32_t p, int h, int j, F& f, Counters& out
         if (!append_short(cand, n_cand, qb, qe)) range(qb, qe);
       }
       checked += n_cand;
-      for (std::uint32_t m = 0; m < n_cand; ++m) test_branchless<Count>(p, cand[m], f, out);
+      if (plain) {
+        for (std::uint32_t m = 0; m < n_cand; ++m) test_branchless<Count, Boundary::walls>(p, cand[m], f, out);
+      } else {
+        for (std::uint32_t m = 0; m < n_cand; ++m) test_branchless<Count>(p, cand[m], f, out);
+      }
       n_batch = 0;
     };
     auto runs = [&](std::uint64_t k0, std::uint64_t k1) {
@@ -252,15 +266,22 @@ Counters HGrid<D, B>::query(F&& f_user) const {
       int n_nb = 0;
       std::uint32_t n_cand = 0;
       std::uint64_t nb_particles = 0;
-      const std::uint64_t nb_cells = half_stencil(lv, rows, walk.to(key), key, b, [&](std::uint32_t qb, std::uint32_t qe) {
+      const Coords& c = walk.to(key);
+      const std::uint64_t nb_cells = half_stencil(lv, rows, c, key, b, [&](std::uint32_t qb, std::uint32_t qe) {
         nb_particles += qe - qb;
         if (!append_short(cand, n_cand, qb, qe)) nb[n_nb++] = {qb, qe};
       });
-      for (std::uint32_t p = beg; p < end; ++p) {
-        for (std::uint32_t q = p + 1; q < end; ++q) test<Count>(p, q, f, out);
-        for (std::uint32_t m = 0; m < n_cand; ++m) test_branchless<Count>(p, cand[m], f, out);
+      bool plain = rows.plain_dx;
+      for (int a = 0; a < D; ++a) plain = plain && c[a] >= 1 && c[a] + 1 < lv.n[a];
+      const auto tests = [&]<Boundary TB>(std::uint32_t p) {
+        for (std::uint32_t q = p + 1; q < end; ++q) test<Count, TB>(p, q, f, out);
+        for (std::uint32_t m = 0; m < n_cand; ++m) test_branchless<Count, TB>(p, cand[m], f, out);
         for (int m = 0; m < n_nb; ++m)
-          for (std::uint32_t q = nb[m].first; q < nb[m].second; ++q) test<Count>(p, q, f, out);
+          for (std::uint32_t q = nb[m].first; q < nb[m].second; ++q) test<Count, TB>(p, q, f, out);
+      };
+      for (std::uint32_t p = beg; p < end; ++p) {
+        if (plain) tests.template operator()<Boundary::walls>(p);
+        else tests.template operator()<B>(p);
         if constexpr (Count::enabled) {
           const std::uint64_t acc = 1 + nb_cells;
           const std::uint64_t chk = (end - p - 1) + nb_particles;
