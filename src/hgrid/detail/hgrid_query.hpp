@@ -119,7 +119,7 @@ void HGrid<D, B>::cross_level(std::uint32_t p, int h, int j, F& f, Counters& out
   // Periodic: a box that neither wraps nor spans half an axis, where every
   // candidate is nearer than A / 2 and the minimum image is the plain difference.
   bool plain = B == Boundary::periodic;
-  for (int a = 0; a < D; ++a) plain = plain && !wrap[a] && lo[a] >= 0 && hi[a] < lv.n[a] && 2 * (hi[a] - lo[a] + 1) < lv.n[a];
+  for (int a = 0; a < D; ++a) plain = plain && lo[a] >= 0 && hi[a] < lv.n[a] && 2 * (hi[a] - lo[a] + 1) < lv.n[a];
   auto range = [&](std::uint32_t qb, std::uint32_t qe) {
     checked += qe - qb;
     if (plain) {
