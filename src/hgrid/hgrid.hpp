@@ -192,7 +192,7 @@ class HGrid {
     void flush() {
       for (std::uint32_t k = 0; k < n; ++k) {
         const std::uint32_t i = id[buf[k].first], j = id[buf[k].second];
-        if (i < j) f(i, j); else f(j, i);
+        f(std::min(i, j), std::max(i, j));  // no branch: the order of i and j is random
       }
       n = 0;
     }
