@@ -159,12 +159,13 @@ class HGrid {
   };
   static StencilRows stencil_rows(const detail::Level<D>& L);
   /// Number of cells of the same-level half stencil of the non-empty cell
-  /// with coordinates c, key and bucket b (MODEL.md section 1); calls
+  /// with coordinates c, key and bucket b (MODEL.md section 1; interior: c is
+  /// on neither the first nor the last cell of any axis); calls
   /// add(begin, end) with the particles of its cells, a row of cells at a
   /// time where the level allows it (a range may be empty).
   template <class Add>
   std::uint64_t half_stencil(const detail::Level<D>& L, const StencilRows& rows, const Coords& c,
-                             std::uint64_t key, std::uint64_t b, Add&& add) const;
+                             std::uint64_t key, std::uint64_t b, bool interior, Add&& add) const;
 
   /// Candidate ranges of at most this many particles are appended to an
   /// index list without a branch on their length (see append_short).

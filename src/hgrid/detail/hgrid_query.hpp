@@ -25,13 +25,11 @@ auto HGrid<D, B>::stencil_rows(const detail::Level<D>& L) -> StencilRows {
 template <int D, Boundary B>
 template <class Add>
 std::uint64_t HGrid<D, B>::half_stencil(const detail::Level<D>& L, const StencilRows& rows, const Coords& c,
-                                        std::uint64_t key, std::uint64_t b, Add&& add) const {
-  // Interior cell (not on the first or last cell of any axis): no row wraps
-  // or is clipped, so each row is the run of keys key + delta - 1 .. + 1,
-  // and the own row's +1 cell starts right after the own bucket.
-  bool interior = rows.valid;
-  for (int a = 0; a < D; ++a) interior = interior && c[a] >= 1 && c[a] + 1 < L.n[a];
-  if (interior) {
+                                        std::uint64_t key, std::uint64_t b, bool interior, Add&& add) const {
+  // Interior cell: no row wraps or is clipped, so each row is the run of
+  // keys key + delta - 1 .. + 1, and the own row's +1 cell starts right
+  // after the own bucket.
+  if (rows.valid && interior) {
     for (const std::int64_t dk : rows.delta) {
       const std::uint64_t k0 = key + static_cast<std::uint64_t>(dk) - 1;
       add(start_[rank(L, k0)], start_[rank(L, k0 + 3)]);  // possibly empty: no branch here
@@ -116,10 +114,15 @@ void HGrid<D, B>::cross_level(std::uint32_t p, int h, int j, F& f, Counters& out
   }
   std::uint64_t accessed = 1, checked = 0;
   for (int a = 0; a < D; ++a) accessed *= static_cast<std::uint64_t>(hi[a] - lo[a] + 1);
-  // Periodic: a box that neither wraps nor spans half an axis, where every
-  // candidate is nearer than A / 2 and the minimum image is the plain difference.
-  bool plain = B == Boundary::periodic;
-  for (int a = 0; a < D; ++a) plain = plain && lo[a] >= 0 && hi[a] < lv.n[a] && 2 * (hi[a] - lo[a] + 1) < lv.n[a];
+  // A box inside the level (no wrap) is walked by a fixed key stride below.
+  // Periodic: if it also spans less than half of every axis, every candidate
+  // is nearer than A / 2 and the minimum image is the plain difference.
+  bool inside = true, plain = B == Boundary::periodic;
+  for (int a = 0; a < D; ++a) {
+    inside = inside && lo[a] >= 0 && hi[a] < lv.n[a];
+    plain = plain && 2 * (hi[a] - lo[a] + 1) < lv.n[a];
+  }
+  plain = plain && inside;
   auto range = [&](std::uint32_t qb, std::uint32_t qe) {
     checked += qe - qb;
     if (plain) {
@@ -186,11 +189,9 @@ void HGrid<D, B>::cross_level(std::uint32_t p, int h, int j, F& f, Counters& out
       n_batch += b0 != b1;  // rows of empty cells only are dropped, without a branch
       if (n_batch == kBatch) flush();
     };
-    // A box inside the level on a ranked level: its rows are runs of keys
-    // a fixed stride apart, without wraps (the usual case).
-    bool in_box = lv.ranked;
-    for (int a = 0; a < D; ++a) in_box = in_box && lo[a] >= 0 && hi[a] < lv.n[a];
-    if (in_box) {
+    // A box inside a ranked level: its rows are runs of keys a fixed stride
+    // apart, without wraps (the usual case).
+    if (lv.ranked && inside) {
       const std::uint64_t len = static_cast<std::uint64_t>(hi[D - 1] - lo[D - 1] + 1);
       const std::uint64_t stride = static_cast<std::uint64_t>(lv.n[D - 1]);  // between rows along axis D-2
       const std::uint64_t rows = static_cast<std::uint64_t>(hi[D - 2] - lo[D - 2] + 1);
@@ -267,12 +268,13 @@ Counters HGrid<D, B>::query(F&& f_user) const {
       std::uint32_t n_cand = 0;
       std::uint64_t nb_particles = 0;
       const Coords& c = walk.to(key);
-      const std::uint64_t nb_cells = half_stencil(lv, rows, c, key, b, [&](std::uint32_t qb, std::uint32_t qe) {
+      bool interior = true;  // not on the first or last cell of any axis
+      for (int a = 0; a < D; ++a) interior = interior && c[a] >= 1 && c[a] + 1 < lv.n[a];
+      const std::uint64_t nb_cells = half_stencil(lv, rows, c, key, b, interior, [&](std::uint32_t qb, std::uint32_t qe) {
         nb_particles += qe - qb;
         if (!append_short(cand, n_cand, qb, qe)) nb[n_nb++] = {qb, qe};
       });
-      bool plain = rows.plain_dx;
-      for (int a = 0; a < D; ++a) plain = plain && c[a] >= 1 && c[a] + 1 < lv.n[a];
+      const bool plain = rows.plain_dx && interior;
       const auto tests = [&]<Boundary TB>(std::uint32_t p) {
         for (std::uint32_t q = p + 1; q < end; ++q) test<Count, TB>(p, q, f, out);
         for (std::uint32_t m = 0; m < n_cand; ++m) test_branchless<Count, TB>(p, cand[m], f, out);
