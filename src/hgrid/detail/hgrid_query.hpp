@@ -38,7 +38,7 @@ std::uint64_t HGrid<D, B>::half_stencil(const detail::Level<D>& L, const Stencil
     return detail::kHalfStencil<D>;
   }
   std::uint64_t cells = 0;
-  if (!L.ranked || (B == Boundary::periodic && L.small_periodic)) {
+  if (!rows.valid) {  // hashed, or a periodic axis with fewer than 3 cells
     detail::for_each_half_neighbour<D, B>(L, c, [&](const Coords& nc) {
       const auto [b, e] = cell_range(L, nc);
       if (b != e) add(b, e);
