@@ -32,7 +32,8 @@ std::uint64_t HGrid<D, B>::half_stencil(const detail::Level<D>& L, const Stencil
   if (rows.valid && interior) {
     for (const std::int64_t dk : rows.delta) {
       const std::uint64_t k0 = key + static_cast<std::uint64_t>(dk) - 1;
-      add(start_[rank(L, k0)], start_[rank(L, k0 + 3)]);  // possibly empty: no branch here
+      const auto [qb, qe] = run(L, k0, k0 + 3);
+      add(qb, qe);  // possibly empty: no branch here
     }
     add(start_[b + 1], start_[rank(L, key + 2)]);
     return detail::kHalfStencil<D>;
@@ -52,7 +53,8 @@ std::uint64_t HGrid<D, B>::half_stencil(const detail::Level<D>& L, const Stencil
   // first non-zero component is +1, plus the cell +1 of the own row.
   const std::int64_t n = L.n[D - 1];
   auto runs = [&](std::uint64_t k0, std::uint64_t k1) {
-    add(start_[rank(L, k0)], start_[rank(L, k1)]);  // possibly empty: no branch here
+    const auto [qb, qe] = run(L, k0, k1);
+    add(qb, qe);  // possibly empty: no branch here
   };
   auto row = [&](const Coords& rc, std::int64_t lo, std::int64_t hi) {
     if constexpr (B == Boundary::walls) {
