@@ -85,7 +85,8 @@ void BM_HGridOptimal(benchmark::State& state) {
 void BM_HGridOptimalCounted(benchmark::State& state) {
   run_grid<Counted>(state, fixture(static_cast<std::size_t>(state.range(0))).optimal);
 }
-/// Construction alone (level, cell, sort, directory, gather), to split the
+/// Construction alone (levels and cells, the two sorting steps, the
+/// directory, the sweep order), to split the
 /// build-plus-query time above into its two parts.
 void BM_HGridBuild(benchmark::State& state) {
   const auto& f = fixture(static_cast<std::size_t>(state.range(0)));

@@ -139,16 +139,16 @@ void HGrid<D, B>::cross_level(std::uint32_t p, int h, int j, F& f, Counters& out
     // particles and keep those whose cell is in the box. Same pairs, same
     // counts (every cell of the box still counts as one access), less work.
     for (std::uint32_t q = first; q < last; ++q) {
-      bool inside = true;
-      for (int a = 0; a < D && inside; ++a) {
+      bool in_box = true;  // the cell of q lies in the box
+      for (int a = 0; a < D && in_box; ++a) {
         std::int64_t k = lv.cell_1d(sorted_[q].x[a], a) - lo[a];
         if (wrap[a]) {  // the unwrapped range [lo, hi] is narrower than n: one image can match
           k %= lv.n[a];
           if (k < 0) k += lv.n[a];
         }
-        inside = k >= 0 && k <= hi[a] - lo[a];
+        in_box = k >= 0 && k <= hi[a] - lo[a];
       }
-      if (!inside) continue;
+      if (!in_box) continue;
       ++checked;
       test<Count>(p, q, f, out);
     }
