@@ -30,6 +30,15 @@ class HGrid {
  public:
   HGrid(std::span<const Sphere<D>> spheres, const Extent<D>& box, const GridParams& params);
 
+  /// Rebuilds the grid for new particles (positions, radii, count) in the
+  /// same box with the same params: the same grid as constructing a new one,
+  /// but the memory of the previous build is reused, and a workspace (about
+  /// 22 bytes per particle, in workspace_bytes()) is kept for the next call,
+  /// so that a code rebuilding every time step stops allocating once its
+  /// particle count stops growing. If the input is rejected (InputError),
+  /// the grid is left as it was.
+  void rebuild(std::span<const Sphere<D>> spheres);
+
   /// Hands every overlapping pair (distance < r_i + r_j; minimum image in a
   /// periodic box) to f(i, j) exactly once, with i < j the input indices.
   /// Search direction and counting are compile-time policies.
@@ -69,7 +78,10 @@ class HGrid {
   }
   const GridParams& params() const { return params_; }
   const Extent<D>& box() const { return box_; }
-  /// Bytes held by the grid, including its sorted copy of the particles.
+  /// Bytes of the workspace kept by rebuild() (none after construction).
+  std::size_t workspace_bytes() const { return scratch_.bytes(); }
+  /// Bytes held by the grid, including its sorted copy of the particles
+  /// (not counting the workspace of rebuild()).
   std::size_t memory_bytes() const {
     return sorted_.capacity() * sizeof(Sphere<D>) + id_.capacity() * sizeof(std::uint32_t) +
            start_.capacity() * sizeof(std::uint32_t) + keys_.capacity() * sizeof(std::uint64_t) +
@@ -80,6 +92,34 @@ class HGrid {
 
  private:
   using Coords = std::array<std::int64_t, D>;
+
+  /// Working arrays of a build (keys, coarse buckets, in-bucket sort
+  /// buffers, sweep-order keys): freed after construction, kept by rebuild().
+  /// Not part of the grid's value: a copy of a grid starts without one.
+  struct Scratch {
+    template <class T>
+    using Buf = std::vector<T, detail::UninitAllocator<T>>;
+    Scratch() = default;
+    Scratch(const Scratch&) {}
+    Scratch(Scratch&&) = default;
+    Scratch& operator=(const Scratch&) { return *this; }
+    Scratch& operator=(Scratch&&) = default;
+    Buf<std::uint64_t> key_in, key, tkey, k0, tk;
+    Buf<std::uint32_t> coarse, order, torder, tid, t;
+    Buf<Sphere<D>> tsph;
+    std::vector<std::uint32_t> cursor, bucket_begin;
+    std::size_t bytes() const {
+      return (key_in.capacity() + key.capacity() + tkey.capacity() + k0.capacity() + tk.capacity()) *
+                 sizeof(std::uint64_t) +
+             (coarse.capacity() + order.capacity() + torder.capacity() + tid.capacity() + t.capacity() +
+              cursor.capacity() + bucket_begin.capacity()) *
+                 sizeof(std::uint32_t) +
+             tsph.capacity() * sizeof(Sphere<D>);
+    }
+  };
+  /// Sorts the particles into the levels' cells and fills the directory
+  /// (levels_ must hold the geometry of params_ and box_).
+  void build(std::span<const Sphere<D>> spheres, Scratch& ws);
 
   /// Bucket of the cell with this key, or kNoBucket if the cell is empty.
   std::uint64_t bucket(const detail::Level<D>& L, std::uint64_t key) const {
@@ -242,6 +282,7 @@ class HGrid {
   std::vector<std::uint32_t> rank_;      // ranked levels: set bits before each word (within its level)
   std::vector<std::uint32_t> level_begin_;  // first sorted particle of each level, plus N
   std::vector<std::uint32_t> sweep_;     // the particles above the lowest level, by their lowest-level cell
+  Scratch scratch_;                      // rebuild()'s workspace
 };
 
 }  // namespace hgrid

@@ -3,7 +3,6 @@
 // cell directory. Included by hgrid/hgrid.hpp only.
 #pragma once
 #include <bit>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -26,9 +25,22 @@ HGrid<D, B>::HGrid(std::span<const Sphere<D>> spheres, const Extent<D>& box, con
   for (int a = 0; a < D; ++a)
     if (!(std::isfinite(box[a]) && box[a] > 0))
       throw InputError("box", "side " + std::to_string(a + 1) + " must be finite and > 0");
+  levels_ = detail::make_levels<D>(s, box, B);
+  Scratch scratch;  // released on return: a grid only constructed keeps no workspace
+  build(spheres, scratch);
+}
+
+template <int D, Boundary B>
+void HGrid<D, B>::rebuild(std::span<const Sphere<D>> spheres) {
+  build(spheres, scratch_);
+}
+
+template <int D, Boundary B>
+void HGrid<D, B>::build(std::span<const Sphere<D>> spheres, Scratch& ws) {
+  const std::vector<double>& s = params_.sizes;
+  const Extent<D>& box = box_;
   const std::size_t N = spheres.size();
   if (N >= (std::size_t{1} << 31)) throw InputError("n", "at most 2^31 - 1 particles per grid");
-  levels_ = detail::make_levels<D>(s, box, B);
   const int L = levels();
   const auto wrapped = [&](std::size_t i) {
     Sphere<D> p = spheres[i];
@@ -73,9 +85,14 @@ HGrid<D, B>::HGrid(std::span<const Sphere<D>> spheres, const Extent<D>& box, con
 
   // Pass 1: check every particle, find its place, count the particles per
   // coarse bucket.
-  std::vector<std::uint32_t> cursor(coarse_base[L] + 1, 0);
-  const auto key_in = std::unique_ptr<std::uint64_t[]>(new std::uint64_t[N]);  // uninitialised, all written
-  const auto coarse = std::unique_ptr<std::uint32_t[]>(new std::uint32_t[N]);
+  // Nothing of the grid itself changes before every particle has passed its
+  // checks: a rejected input leaves the grid as it was.
+  auto& cursor = ws.cursor;
+  cursor.assign(coarse_base[L] + 1, 0);
+  ws.key_in.resize(N);  // uninitialised, all written
+  ws.coarse.resize(N);
+  std::uint64_t* const key_in = ws.key_in.data();
+  std::uint32_t* const coarse = ws.coarse.data();
   double d_max = 0;
   for (std::size_t i = 0; i < N; ++i) {
     const auto& q = spheres[i];
@@ -99,12 +116,14 @@ HGrid<D, B>::HGrid(std::span<const Sphere<D>> spheres, const Extent<D>& box, con
     throw InputError("sizes", "the last cell size " + std::to_string(s.back()) +
                                   " is below the largest diameter " + std::to_string(d_max));
   for (std::size_t c = 1; c < cursor.size(); ++c) cursor[c] += cursor[c - 1];
-  const std::vector<std::uint32_t> bucket_begin(cursor);
+  ws.bucket_begin.assign(cursor.begin(), cursor.end());
+  const auto& bucket_begin = ws.bucket_begin;
   level_begin_.resize(L + 1);
   for (int h = 0; h <= L; ++h) level_begin_[h] = bucket_begin[coarse_base[h]];
 
   // Pass 2: move every particle into its coarse bucket.
-  const auto key = std::unique_ptr<std::uint64_t[]>(new std::uint64_t[N]);
+  ws.key.resize(N);
+  std::uint64_t* const key = ws.key.data();
   id_.resize(N);
   sorted_.resize(N);
   for (std::size_t i = 0; i < N; ++i) {
@@ -122,6 +141,8 @@ HGrid<D, B>::HGrid(std::span<const Sphere<D>> spheres, const Extent<D>& box, con
     auto& lv = levels_[h];
     const std::uint64_t n_h = level_begin_[h + 1] - level_begin_[h];
     lv.ranked = lv.cells() <= detail::kRankCellsPerParticle * n_h + detail::kRankMinCells;
+    lv.word_base = lv.words = lv.slots = lv.key_base = 0;  // the previous build's layout, if any
+    lv.shift = 64;
     if (lv.ranked) {
       lv.word_base = words;
       lv.words = lv.cells() / 64 + 1;
@@ -150,18 +171,20 @@ HGrid<D, B>::HGrid(std::span<const Sphere<D>> spheres, const Extent<D>& box, con
     std::size_t most = 0;
     for (std::size_t c = 0; c + 1 < bucket_begin.size(); ++c)
       most = std::max<std::size_t>(most, bucket_begin[c + 1] - bucket_begin[c]);
-    std::vector<std::uint64_t> tkey(most);
-    std::vector<std::uint32_t> order(most), torder(most), tid(most);
-    std::vector<Sphere<D>> tsph(most);
+    auto &tkey = ws.tkey, &order = ws.order, &torder = ws.torder, &tid = ws.tid;
+    auto& tsph = ws.tsph;
+    for (auto* v : {&order, &torder, &tid}) v->resize(most);
+    tkey.resize(most);
+    tsph.resize(most);
     for (int h = 0; h < L; ++h) {
       auto& lv = levels_[h];
       lv.bucket_base = buckets;
       for (std::uint32_t c = coarse_base[h]; c < coarse_base[h + 1]; ++c) {
         const std::uint32_t b = bucket_begin[c], n = bucket_begin[c + 1] - b;
-        const std::uint64_t* k = key.get() + b;
+        const std::uint64_t* k = key + b;
         if (n >= 2) {
           for (std::uint32_t m = 0; m < n; ++m) order[m] = m;
-          detail::radix_sort_pairs(key.get() + b, order.data(), tkey.data(), torder.data(), n, shift[h]);
+          detail::radix_sort_pairs(key + b, order.data(), tkey.data(), torder.data(), n, shift[h]);
           for (std::uint32_t m = 0; m < n; ++m) {
             tsph[m] = sorted_[b + order[m]];
             tid[m] = id_[b + order[m]];
@@ -202,9 +225,13 @@ HGrid<D, B>::HGrid(std::span<const Sphere<D>> spheres, const Extent<D>& box, con
   // it in its own cell order streams it through the cache about once,
   // instead of once per level above it.
   const std::size_t n_up = N - level_begin_[std::min(1, L)];
+  sweep_.clear();
   if (L > 1 && n_up > 0) {
-    std::vector<std::uint64_t> k0(n_up), tk(n_up);
-    std::vector<std::uint32_t> t(n_up);
+    auto &k0 = ws.k0, &tk = ws.tk;
+    auto& t = ws.t;
+    k0.resize(n_up);
+    tk.resize(n_up);
+    t.resize(n_up);
     sweep_.resize(n_up);
     for (std::size_t i = 0; i < n_up; ++i) {
       sweep_[i] = static_cast<std::uint32_t>(level_begin_[1] + i);

@@ -1,0 +1,140 @@
+// HGrid::rebuild: one grid rebuilt over a sequence of moving, growing and
+// shrinking packings gives exactly what a freshly constructed grid gives
+// (pair sets against brute force, and every count), reuses its memory, and
+// leaves itself unchanged when an input is rejected.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <limits>
+
+#include "hgrid/error.hpp"
+#include "support.hpp"
+
+namespace hgrid::test {
+namespace {
+
+/// The first n particles of s, each moved by up to `step` per axis (walls:
+/// kept inside the box), as a time-stepping code would hand them over.
+template <int D>
+Scene<D> moved(const Scene<D>& s, std::size_t n, double step, Boundary b, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-step, step);
+  Scene<D> out{{s.spheres.begin(), s.spheres.begin() + static_cast<std::ptrdiff_t>(n)}, s.box};
+  for (auto& p : out.spheres)
+    for (int a = 0; a < D; ++a) {
+      p.x[a] += u(rng);
+      if (b == Boundary::walls) p.x[a] = std::clamp(p.x[a], 0.0, s.box[a]);
+    }
+  return out;
+}
+
+template <int D, Boundary B, Search S>
+std::vector<Pair> sorted_pairs(const HGrid<D, B>& g, Counters* c = nullptr) {
+  std::vector<Pair> out;
+  const Counters cnt = g.template query<S, Counted>([&](std::uint32_t i, std::uint32_t j) { out.emplace_back(i, j); });
+  if (c) *c = cnt;
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+void expect_same_counts(const Counters& a, const Counters& b) {
+  EXPECT_EQ(a.cell_accesses, b.cell_accesses);
+  EXPECT_EQ(a.narrow_phase_checks, b.narrow_phase_checks);
+  EXPECT_EQ(a.contacts, b.contacts);
+  EXPECT_EQ(a.particles_per_level, b.particles_per_level);
+  EXPECT_EQ(a.accesses_by_level, b.accesses_by_level);
+  EXPECT_EQ(a.checks_by_level, b.checks_by_level);
+}
+
+template <int D, Boundary B>
+void check_sequence(std::uint64_t seed) {
+  const Scene<D> base = random_scene<D>(3000, 0.4, -3.0, 20.0, B, seed);
+  const std::vector<double> sizes = exponential_sizes(4, 1.0, 20.0);
+  HGrid<D, B> grid(std::span<const Sphere<D>>(base.spheres), base.box, GridParams{sizes, Search::top_down});
+  EXPECT_EQ(grid.workspace_bytes(), 0u);
+  // Grow, move, shrink to one and to none, grow again.
+  const std::size_t counts[] = {3000, 3000, 1200, 1, 0, 2500, 3000};
+  for (std::size_t k = 0; k < std::size(counts); ++k) {
+    const std::uint64_t step_seed = seed * 100 + k;
+    SCOPED_TRACE("seed " + std::to_string(seed) + ", step " + std::to_string(k) + ", n = " + std::to_string(counts[k]));
+    const Scene<D> s = moved(base, counts[k], 0.7, B, step_seed);
+    grid.rebuild(std::span<const Sphere<D>>(s.spheres));
+    const HGrid<D, B> fresh(std::span<const Sphere<D>>(s.spheres), s.box, GridParams{sizes, Search::top_down});
+    const auto expect = brute_pairs<D, B>(s);
+    Counters c_re, c_fresh;
+    EXPECT_EQ((sorted_pairs<D, B, Search::top_down>(grid, &c_re)), expect);
+    sorted_pairs<D, B, Search::top_down>(fresh, &c_fresh);
+    expect_same_counts(c_re, c_fresh);
+    EXPECT_EQ((sorted_pairs<D, B, Search::bottom_up>(grid, &c_re)), expect);
+    sorted_pairs<D, B, Search::bottom_up>(fresh, &c_fresh);
+    expect_same_counts(c_re, c_fresh);
+    EXPECT_EQ(grid.size(), s.spheres.size());
+    EXPECT_EQ(grid.particles_per_level(), fresh.particles_per_level());
+  }
+}
+
+TEST(HGridRebuild, SameAsFreshGrid3DPeriodic) {
+  for (std::uint64_t seed : {1, 2}) check_sequence<3, Boundary::periodic>(seed);
+}
+TEST(HGridRebuild, SameAsFreshGrid3DWalls) {
+  for (std::uint64_t seed : {3, 4}) check_sequence<3, Boundary::walls>(seed);
+}
+TEST(HGridRebuild, SameAsFreshGrid2DPeriodic) { check_sequence<2, Boundary::periodic>(5); }
+TEST(HGridRebuild, SameAsFreshGrid2DWalls) { check_sequence<2, Boundary::walls>(6); }
+
+// A level that is ranked in one build and hashed in the next (its particle
+// count changes the directory's layout: its ~134 000 cells of side 2 are
+// ranked for 4000 particles, hashed for 3), and back.
+TEST(HGridRebuild, DirectoryLayoutChangesBetweenBuilds) {
+  const Scene<3> dense = random_scene<3>(4000, 0.02, 0.0, 1.0, Boundary::periodic, 7);
+  const Scene<3> sparse = moved(dense, 3, 0.5, Boundary::periodic, 8);
+  const std::vector<double> sizes{2.0, 2.5};
+  HGrid<3, Boundary::periodic> grid(std::span<const Sphere<3>>(dense.spheres), dense.box, GridParams{sizes});
+  for (const Scene<3>* s : {&sparse, &dense, &sparse}) {
+    grid.rebuild(std::span<const Sphere<3>>(s->spheres));
+    EXPECT_EQ((sorted_pairs<3, Boundary::periodic, Search::top_down>(grid)), (brute_pairs<3, Boundary::periodic>(*s)));
+  }
+}
+
+TEST(HGridRebuild, ReusesItsMemory) {
+  const Scene<3> s = random_scene<3>(20000, 0.5, -3.0, 10.0, Boundary::periodic, 9);
+  HGrid<3, Boundary::periodic> grid(std::span<const Sphere<3>>(s.spheres), s.box,
+                                    GridParams{exponential_sizes(3, 1.0, 10.0)});
+  grid.rebuild(std::span<const Sphere<3>>(s.spheres));
+  const std::size_t mem = grid.memory_bytes(), ws = grid.workspace_bytes();
+  EXPECT_GT(ws, 20u * s.spheres.size());  // at least the keys and coarse buckets
+  for (std::uint64_t k = 0; k < 3; ++k) {
+    const Scene<3> m = moved(s, s.spheres.size(), 0.3, Boundary::periodic, 10 + k);
+    grid.rebuild(std::span<const Sphere<3>>(m.spheres));
+    EXPECT_EQ(grid.memory_bytes(), mem);
+    EXPECT_EQ(grid.workspace_bytes(), ws);
+  }
+  // The workspace is not part of the grid's value: a copy has none, and
+  // finds the same pairs.
+  const auto copy = grid;
+  EXPECT_EQ(copy.workspace_bytes(), 0u);
+  EXPECT_EQ((sorted_pairs<3, Boundary::periodic, Search::top_down>(copy)),
+            (sorted_pairs<3, Boundary::periodic, Search::top_down>(grid)));
+}
+
+TEST(HGridRebuild, RejectedInputLeavesGridUnchanged) {
+  const Scene<3> s = random_scene<3>(2000, 0.4, -3.0, 10.0, Boundary::walls, 11);
+  const std::vector<double> sizes = exponential_sizes(3, 1.0, 10.0);
+  HGrid<3, Boundary::walls> grid(std::span<const Sphere<3>>(s.spheres), s.box, GridParams{sizes});
+  const auto before = sorted_pairs<3, Boundary::walls, Search::top_down>(grid);
+  ASSERT_FALSE(before.empty());
+  auto bad = s.spheres;
+  bad[1500].x[1] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(grid.rebuild(std::span<const Sphere<3>>(bad)), InputError);
+  bad = s.spheres;
+  bad[10].r = 2 * sizes.back();  // larger than the largest cell
+  EXPECT_THROW(grid.rebuild(std::span<const Sphere<3>>(bad)), InputError);
+  bad = s.spheres;
+  bad[1999].x[0] = -1.0;  // outside the walled box
+  EXPECT_THROW(grid.rebuild(std::span<const Sphere<3>>(bad)), InputError);
+  EXPECT_EQ(grid.size(), s.spheres.size());
+  EXPECT_EQ((sorted_pairs<3, Boundary::walls, Search::top_down>(grid)), before);
+}
+
+}  // namespace
+}  // namespace hgrid::test
