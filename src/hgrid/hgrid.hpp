@@ -32,8 +32,8 @@ class HGrid {
 
   /// Rebuilds the grid for new particles (positions, radii, count) in the
   /// same box with the same params: the same grid as constructing a new one,
-  /// but the memory of the previous build is reused, and a workspace (about
-  /// 22 bytes per particle, in workspace_bytes()) is kept for the next call,
+  /// but the memory of the previous build is reused, and a workspace (22-40
+  /// bytes per particle, workspace_bytes()) is kept for the next call,
   /// so that a code rebuilding every time step stops allocating once its
   /// particle count stops growing. If the input is rejected (InputError),
   /// the grid is left as it was.
