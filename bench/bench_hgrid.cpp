@@ -98,7 +98,7 @@ void BM_HGridBuild(benchmark::State& state) {
   set_per_particle(state, static_cast<double>(f.spheres.size()));
 }
 /// Rebuild plus query on one grid kept across iterations, as a code that
-/// rebuilds every time step uses it: no allocation after the first build.
+/// rebuilds every time step uses it: its arrays are reused.
 void BM_HGridRebuild(benchmark::State& state) {
   const auto& f = fixture(static_cast<std::size_t>(state.range(0)));
   Grid grid(f.spheres, f.box, GridParams{f.optimal, Search::top_down});

@@ -32,11 +32,11 @@ class HGrid {
 
   /// Rebuilds the grid for new particles (positions, radii, count) in the
   /// same box with the same params: the same grid as constructing a new one,
-  /// but the memory of the previous build is reused, and a workspace (22-40
-  /// bytes per particle, workspace_bytes()) is kept for the next call,
-  /// so that a code rebuilding every time step stops allocating once its
-  /// particle count stops growing. If the input is rejected (InputError),
-  /// the grid is left as it was.
+  /// but the arrays of the previous build are reused, and a workspace (22-40
+  /// bytes per particle, workspace_bytes()) is kept for the next call: it
+  /// allocates only when an array must grow beyond its largest size so far
+  /// (more particles, a fuller cell range than before). If the input is
+  /// rejected (InputError), the grid is left as it was.
   void rebuild(std::span<const Sphere<D>> spheres);
 
   /// Hands every overlapping pair (distance < r_i + r_j; minimum image in a
@@ -107,14 +107,15 @@ class HGrid {
     Buf<std::uint64_t> key_in, key, tkey, k0, tk;
     Buf<std::uint32_t> coarse, order, torder, tid, t;
     Buf<Sphere<D>> tsph;
-    std::vector<std::uint32_t> cursor, bucket_begin;
+    std::vector<std::uint32_t> cursor, bucket_begin, coarse_base;
+    std::vector<int> shift;
     std::size_t bytes() const {
       return (key_in.capacity() + key.capacity() + tkey.capacity() + k0.capacity() + tk.capacity()) *
                  sizeof(std::uint64_t) +
              (coarse.capacity() + order.capacity() + torder.capacity() + tid.capacity() + t.capacity() +
-              cursor.capacity() + bucket_begin.capacity()) *
+              cursor.capacity() + bucket_begin.capacity() + coarse_base.capacity()) *
                  sizeof(std::uint32_t) +
-             tsph.capacity() * sizeof(Sphere<D>);
+             tsph.capacity() * sizeof(Sphere<D>) + shift.capacity() * sizeof(int);
     }
   };
   /// Sorts the particles into the levels' cells and fills the directory

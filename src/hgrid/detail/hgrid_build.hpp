@@ -64,8 +64,10 @@ void HGrid<D, B>::build(std::span<const Sphere<D>> spheres, Scratch& ws) {
   // particles themselves (sequential reads, a few hundred write streams);
   // then, inside each bucket, which fits in the cache, a radix sort of the
   // low key bits and the permutation of its particles. Both steps are stable.
-  std::vector<int> shift(L);
-  std::vector<std::uint32_t> coarse_base(L + 1, 0);
+  auto& shift = ws.shift;
+  auto& coarse_base = ws.coarse_base;
+  shift.assign(L, 0);
+  coarse_base.assign(L + 1, 0);
   const int coarse_bits = static_cast<int>(std::bit_width(N / detail::kCoarseBucket));
   for (int h = 0; h < L; ++h) {
     shift[h] = std::max(0, static_cast<int>(std::bit_width(levels_[h].cells() - 1)) - coarse_bits);
