@@ -4,11 +4,29 @@
 // leaves itself unchanged when an input is rejected.
 #include <gtest/gtest.h>
 
-#include <cstdio>
+#include <atomic>
+#include <cstdlib>
 #include <limits>
+#include <new>
 
 #include "hgrid/error.hpp"
 #include "support.hpp"
+
+// Every allocation of this test program through operator new is counted, so
+// that a test can check that a rebuild allocates nothing.
+namespace {
+std::atomic<std::size_t> g_allocations{0};
+}
+void* operator new(std::size_t n) {
+  ++g_allocations;
+  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t n) { return ::operator new(n); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
 namespace hgrid::test {
 namespace {
@@ -109,9 +127,18 @@ TEST(HGridRebuild, ReusesItsMemory) {
     EXPECT_EQ(grid.memory_bytes(), mem);
     EXPECT_EQ(grid.workspace_bytes(), ws);
   }
+  // The same particles again: every array already has its size, so the
+  // rebuild allocates nothing.
+  const Scene<3> last = moved(s, s.spheres.size(), 0.3, Boundary::periodic, 12);
+  grid.rebuild(std::span<const Sphere<3>>(last.spheres));
+  const std::size_t before = g_allocations.load();
+  grid.rebuild(std::span<const Sphere<3>>(last.spheres));
+  EXPECT_EQ(g_allocations.load() - before, 0u);
   // The workspace is not part of the grid's value: a copy has none, and
   // finds the same pairs.
+  const std::size_t before_copy = g_allocations.load();
   const auto copy = grid;
+  EXPECT_GT(g_allocations.load() - before_copy, 0u);  // the count does see the grid's arrays
   EXPECT_EQ(copy.workspace_bytes(), 0u);
   EXPECT_EQ((sorted_pairs<3, Boundary::periodic, Search::top_down>(copy)),
             (sorted_pairs<3, Boundary::periodic, Search::top_down>(grid)));
