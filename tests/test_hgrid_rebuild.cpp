@@ -13,10 +13,19 @@
 #include "support.hpp"
 
 // Every allocation of this test program through operator new is counted, so
-// that a test can check that a rebuild allocates nothing.
+// that a test can check that a rebuild allocates nothing. libstdc++'s other
+// forms (nothrow, aligned) end in these or in malloc / free; under
+// AddressSanitizer, which brings its own forms of all of them, the count is
+// left out (replacing only these would mix its allocator with free).
 namespace {
 std::atomic<std::size_t> g_allocations{0};
-}
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kCountsAllocations = false;
+#else
+constexpr bool kCountsAllocations = true;
+#endif
+}  // namespace
+#if !defined(__SANITIZE_ADDRESS__)
 void* operator new(std::size_t n) {
   ++g_allocations;
   if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
@@ -27,6 +36,7 @@ void operator delete(void* p) noexcept { std::free(p); }
 void operator delete[](void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+#endif
 
 namespace hgrid::test {
 namespace {
@@ -133,12 +143,12 @@ TEST(HGridRebuild, ReusesItsMemory) {
   grid.rebuild(std::span<const Sphere<3>>(last.spheres));
   const std::size_t before = g_allocations.load();
   grid.rebuild(std::span<const Sphere<3>>(last.spheres));
-  EXPECT_EQ(g_allocations.load() - before, 0u);
+  if (kCountsAllocations) EXPECT_EQ(g_allocations.load() - before, 0u);
   // The workspace is not part of the grid's value: a copy has none, and
   // finds the same pairs.
   const std::size_t before_copy = g_allocations.load();
   const auto copy = grid;
-  EXPECT_GT(g_allocations.load() - before_copy, 0u);  // the count does see the grid's arrays
+  if (kCountsAllocations) EXPECT_GT(g_allocations.load() - before_copy, 0u);  // the count does see the grid's arrays
   EXPECT_EQ(copy.workspace_bytes(), 0u);
   EXPECT_EQ((sorted_pairs<3, Boundary::periodic, Search::top_down>(copy)),
             (sorted_pairs<3, Boundary::periodic, Search::top_down>(grid)));
