@@ -97,16 +97,14 @@ class HGrid {
   /// buffers, sweep-order keys): freed after construction, kept by rebuild().
   /// Not part of the grid's value: a copy of a grid starts without one.
   struct Scratch {
-    template <class T>
-    using Buf = std::vector<T, detail::UninitAllocator<T>>;
     Scratch() = default;
     Scratch(const Scratch&) {}
     Scratch(Scratch&&) = default;
     Scratch& operator=(const Scratch&) { return *this; }
     Scratch& operator=(Scratch&&) = default;
-    Buf<std::uint64_t> key_in, key, tkey, k0, tk;
-    Buf<std::uint32_t> coarse, order, torder, tid, t;
-    Buf<Sphere<D>> tsph;
+    detail::UninitVector<std::uint64_t> key_in, key, tkey, k0, tk;
+    detail::UninitVector<std::uint32_t> coarse, order, torder, tid, t;
+    detail::UninitVector<Sphere<D>> tsph;
     std::vector<std::uint32_t> cursor, bucket_begin, coarse_base;
     std::vector<int> shift;
     std::size_t bytes() const {
@@ -274,9 +272,9 @@ class HGrid {
   GridParams params_;
   Extent<D> box_{};
   std::vector<detail::Level<D>> levels_;
-  std::vector<Sphere<D>, detail::UninitAllocator<Sphere<D>>> sorted_;  // particles sorted by (level, cell)
-  std::vector<std::uint32_t, detail::UninitAllocator<std::uint32_t>> id_;  // input index of each sorted particle
-  std::vector<std::uint32_t, detail::UninitAllocator<std::uint32_t>> start_;  // bucket -> first sorted particle; one past the last bucket too
+  detail::UninitVector<Sphere<D>> sorted_;      // particles sorted by (level, cell)
+  detail::UninitVector<std::uint32_t> id_;      // input index of each sorted particle
+  detail::UninitVector<std::uint32_t> start_;   // bucket -> first sorted particle; one past the last bucket too
   std::vector<std::uint64_t> keys_;      // cell keys of the hashed levels' tables
   std::vector<std::uint32_t> slot_bucket_;  // bucket (within its level) of each table slot
   std::vector<std::uint64_t> words_;     // ranked levels: one bit per cell, set if non-empty

@@ -5,6 +5,7 @@
 #include <memory>
 #include <new>
 #include <utility>
+#include <vector>
 
 namespace hgrid::detail {
 
@@ -28,5 +29,9 @@ struct UninitAllocator : std::allocator<T> {
     ::new (static_cast<void*>(p)) U(std::forward<A>(a)...);
   }
 };
+
+/// A vector whose resize() leaves new trivial elements unwritten.
+template <class T>
+using UninitVector = std::vector<T, UninitAllocator<T>>;
 
 }  // namespace hgrid::detail
