@@ -20,6 +20,7 @@ n=$(python3 -c "import json; print(json.load(open('results/dpm_free_cooling$suff
 for fmt in png pdf; do
   out="paper_figs/fig14-dpm-energy$suffix.$fmt" tmp="paper_figs/.fig14-dpm-energy$suffix.tmp.$fmt"
   gnuplot -e "in='$csv'; out='$tmp'; fmt='$fmt'; scale_label='$scale scale'; n_label='$n'" plots/fig14.gp
+  if [ "$fmt" = pdf ]; then plots/lib/pdf_fixdate.sh "$tmp"; fi  # a fixed date: same data, same bytes
   mv -f "$tmp" "$out"
 done
 table="paper_figs/fig14-dpm-table$suffix.md"

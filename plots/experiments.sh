@@ -26,6 +26,7 @@ plot() {
   for fmt in png pdf; do
     local out="paper_figs/$name$suffix.$fmt" tmp="paper_figs/.$name$suffix.tmp.$fmt"
     gnuplot -e "in='$csv'; out='$tmp'; fmt='$fmt'; scale_label='$scale scale'; series='$series'" "$script"
+    if [ "$fmt" = pdf ]; then plots/lib/pdf_fixdate.sh "$tmp"; fi  # a fixed date: same data, same bytes
     mv -f "$tmp" "$out"
   done
   echo "wrote paper_figs/$name$suffix.png and .pdf" >&2

@@ -30,6 +30,7 @@ for script in plots/fig[0-9][0-9]-*.gp; do
       else term="pdfcairo enhanced size 10in,4.3in font 'Helvetica,11'"; fi;;
     esac
     gnuplot -e "datadir='$data'" -e "set terminal $term" -e "set output '$tmp'" "$script"
+    if [ "$fmt" = pdf ]; then plots/lib/pdf_fixdate.sh "$tmp"; fi  # a fixed date: same data, same bytes
     mv -f "$tmp" "paper_figs/$name.$fmt"
   done
   echo "wrote paper_figs/$name.png and .pdf" >&2
