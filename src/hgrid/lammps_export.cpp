@@ -63,7 +63,10 @@ std::string lammps_data(const Packing& p) {
   std::string line;
   for (std::size_t i = 0; i < p.size(); ++i) {
     line = std::to_string(i + 1) + " 1 " + num(2 * p.radii[i]) + " 1";
-    for (int a = 0; a < 3; ++a) line += " " + (a < p.d ? num(p.positions[i * p.d + a]) : std::string("0"));
+    for (int a = 0; a < 3; ++a) {  // appended piece by piece: GCC 12 warns (-Wrestrict) on " " + string
+      line += ' ';
+      line += a < p.d ? num(p.positions[i * p.d + a]) : std::string("0");
+    }
     out += line + "\n";
   }
   return out;
