@@ -7,7 +7,7 @@ else { set terminal pngcairo enhanced size 900,630 font 'Helvetica,12' }
 set output out
 set datafile separator ','
 set datafile columnheaders
-set key top left box opaque
+set key at graph 0.98, graph 0.29 right top box opaque  # between the hgridlab line (1) and LAMMPS multi (~10)
 set xlabel 'packing fraction {/Symbol n}'
 set ylabel 'time per build / hgridlab HGrid time'
 set logscale y
