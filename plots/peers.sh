@@ -12,10 +12,17 @@ PLACEMENT=${2:-excluded}
 FLAGS=${PEERS_FLAGS:---no-linked-cell --scan small}
 CSV=results/peers.csv
 mkdir -p results/peers paper_figs
-rm -f "$CSV"
+# Every output goes to a temporary name first and is renamed when complete:
+# a failed or interrupted run leaves the previous results as they were.
+tmp_csv="results/.peers.csv.tmp"
+trap 'rm -f "$tmp_csv" results/peers/*.json.tmp paper_figs/.peers.tmp.png' EXIT
+rm -f "$tmp_csv"
 for nu in 0.1 0.2 0.3 0.4 0.5 0.6; do
-  build/peers --n "$N" --nu "$nu" --placement "$PLACEMENT" --csv "$CSV" --json $FLAGS \
-    > "results/peers/n${N}-nu${nu}-${PLACEMENT}.json"
+  json="results/peers/n${N}-nu${nu}-${PLACEMENT}.json"
+  build/peers --n "$N" --nu "$nu" --placement "$PLACEMENT" --csv "$tmp_csv" --json $FLAGS > "$json.tmp"
+  mv -f "$json.tmp" "$json"
 done
-gnuplot -e "in='$CSV'; out='paper_figs/peers.png'; placement='$PLACEMENT'" plots/peers.gp
+gnuplot -e "in='$tmp_csv'; out='paper_figs/.peers.tmp.png'; placement='$PLACEMENT'" plots/peers.gp
+mv -f "$tmp_csv" "$CSV"
+mv -f paper_figs/.peers.tmp.png paper_figs/peers.png
 echo "wrote $CSV and paper_figs/peers.png"
