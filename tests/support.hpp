@@ -72,15 +72,20 @@ std::vector<Pair> brute_pairs(const Scene<D>& s) {
   return out;
 }
 
-/// HGrid pairs in the order found (NOT deduplicated: duplicates must show).
-template <int D, Boundary B, Search S, class Count = Uncounted>
-std::pair<std::vector<Pair>, Counters> grid_pairs(const Scene<D>& s, const std::vector<double>& sizes) {
-  GridParams g{sizes, S};
-  const HGrid<D, B> grid(std::span<const Sphere<D>>(s.spheres), s.box, g);
+/// The pairs of a grid, sorted (NOT deduplicated: duplicates must show), and its counters.
+template <Search S, class Count = Uncounted, int D, Boundary B>
+std::pair<std::vector<Pair>, Counters> query_pairs(const HGrid<D, B>& grid) {
   std::vector<Pair> out;
   const Counters c = grid.template query<S, Count>([&](std::uint32_t i, std::uint32_t j) { out.emplace_back(i, j); });
   std::sort(out.begin(), out.end());
   return {out, c};
+}
+
+/// The same for a new grid of the scene.
+template <int D, Boundary B, Search S, class Count = Uncounted>
+std::pair<std::vector<Pair>, Counters> grid_pairs(const Scene<D>& s, const std::vector<double>& sizes) {
+  const HGrid<D, B> grid(std::span<const Sphere<D>>(s.spheres), s.box, GridParams{sizes, S});
+  return query_pairs<S, Count>(grid);
 }
 
 }  // namespace hgrid::test

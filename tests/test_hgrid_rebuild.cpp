@@ -61,15 +61,6 @@ Scene<D> moved(const Scene<D>& s, std::size_t n, double step, Boundary b, std::u
   return out;
 }
 
-template <int D, Boundary B, Search S>
-std::vector<Pair> sorted_pairs(const HGrid<D, B>& g, Counters* c = nullptr) {
-  std::vector<Pair> out;
-  const Counters cnt = g.template query<S, Counted>([&](std::uint32_t i, std::uint32_t j) { out.emplace_back(i, j); });
-  if (c) *c = cnt;
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
 void expect_same_counts(const Counters& a, const Counters& b) {
   EXPECT_EQ(a.cell_accesses, b.cell_accesses);
   EXPECT_EQ(a.narrow_phase_checks, b.narrow_phase_checks);
@@ -94,13 +85,12 @@ void check_sequence(std::uint64_t seed) {
     grid.rebuild(std::span<const Sphere<D>>(s.spheres));
     const HGrid<D, B> fresh(std::span<const Sphere<D>>(s.spheres), s.box, GridParams{sizes, Search::top_down});
     const auto expect = brute_pairs<D, B>(s);
-    Counters c_re, c_fresh;
-    EXPECT_EQ((sorted_pairs<D, B, Search::top_down>(grid, &c_re)), expect);
-    sorted_pairs<D, B, Search::top_down>(fresh, &c_fresh);
-    expect_same_counts(c_re, c_fresh);
-    EXPECT_EQ((sorted_pairs<D, B, Search::bottom_up>(grid, &c_re)), expect);
-    sorted_pairs<D, B, Search::bottom_up>(fresh, &c_fresh);
-    expect_same_counts(c_re, c_fresh);
+    const auto td = query_pairs<Search::top_down, Counted>(grid);
+    EXPECT_EQ(td.first, expect);
+    expect_same_counts(td.second, query_pairs<Search::top_down, Counted>(fresh).second);
+    const auto bu = query_pairs<Search::bottom_up, Counted>(grid);
+    EXPECT_EQ(bu.first, expect);
+    expect_same_counts(bu.second, query_pairs<Search::bottom_up, Counted>(fresh).second);
     EXPECT_EQ(grid.size(), s.spheres.size());
     EXPECT_EQ(grid.particles_per_level(), fresh.particles_per_level());
   }
@@ -125,7 +115,7 @@ TEST(HGridRebuild, DirectoryLayoutChangesBetweenBuilds) {
   HGrid<3, Boundary::periodic> grid(std::span<const Sphere<3>>(dense.spheres), dense.box, GridParams{sizes});
   for (const Scene<3>* s : {&sparse, &dense, &sparse}) {
     grid.rebuild(std::span<const Sphere<3>>(s->spheres));
-    EXPECT_EQ((sorted_pairs<3, Boundary::periodic, Search::top_down>(grid)), (brute_pairs<3, Boundary::periodic>(*s)));
+    EXPECT_EQ((query_pairs<Search::top_down, Counted>(grid).first), (brute_pairs<3, Boundary::periodic>(*s)));
   }
 }
 
@@ -159,15 +149,15 @@ TEST(HGridRebuild, ReusesItsMemory) {
     EXPECT_GT(g_allocations.load() - before_copy, 0u);  // the count does see the grid's arrays
   }
   EXPECT_EQ(copy.workspace_bytes(), 0u);
-  EXPECT_EQ((sorted_pairs<3, Boundary::periodic, Search::top_down>(copy)),
-            (sorted_pairs<3, Boundary::periodic, Search::top_down>(grid)));
+  EXPECT_EQ((query_pairs<Search::top_down, Counted>(copy).first),
+            (query_pairs<Search::top_down, Counted>(grid).first));
 }
 
 TEST(HGridRebuild, RejectedInputLeavesGridUnchanged) {
   const Scene<3> s = random_scene<3>(2000, 0.4, -3.0, 10.0, Boundary::walls, 11);
   const std::vector<double> sizes = exponential_sizes(3, 1.0, 10.0);
   HGrid<3, Boundary::walls> grid(std::span<const Sphere<3>>(s.spheres), s.box, GridParams{sizes});
-  const auto before = sorted_pairs<3, Boundary::walls, Search::top_down>(grid);
+  const auto before = query_pairs<Search::top_down, Counted>(grid).first;
   ASSERT_FALSE(before.empty());
   auto bad = s.spheres;
   bad[1500].x[1] = std::numeric_limits<double>::quiet_NaN();
@@ -179,7 +169,7 @@ TEST(HGridRebuild, RejectedInputLeavesGridUnchanged) {
   bad[1999].x[0] = -1.0;  // outside the walled box
   EXPECT_THROW(grid.rebuild(std::span<const Sphere<3>>(bad)), InputError);
   EXPECT_EQ(grid.size(), s.spheres.size());
-  EXPECT_EQ((sorted_pairs<3, Boundary::walls, Search::top_down>(grid)), before);
+  EXPECT_EQ((query_pairs<Search::top_down, Counted>(grid).first), before);
 }
 
 }  // namespace
