@@ -7,7 +7,12 @@
 # offsets stay valid. Files without such a date are left as they are.
 # Usage: plots/lib/pdf_fixdate.sh FILE.pdf...
 set -euo pipefail
-stamp=$(date -u -d "@${SOURCE_DATE_EPOCH:-0}" +%Y%m%d%H%M%S)
+epoch=${SOURCE_DATE_EPOCH:-0}
+if ! [[ "$epoch" =~ ^[0-9]+$ ]] || [ "${#epoch}" -gt 11 ]; then
+  echo "pdf_fixdate: SOURCE_DATE_EPOCH must be whole seconds since 1970 (0 to 99999999999), got '$epoch'" >&2
+  exit 2
+fi
+stamp=$(date -u -d "@$epoch" +%Y%m%d%H%M%S)
 for f in "$@"; do
   STAMP=$stamp perl -0777 -pi -e '
     s{/CreationDate \(D:\d{14}(?:Z|[+-]\d\d\x27\d\d\x27?)?\)}{
