@@ -138,16 +138,25 @@ class HGrid {
       slot = (slot + 1) & mask;
     }
   }
-  /// Ranked level: the first bucket at or after cell key k (0 <= k <= cells).
-  std::uint64_t rank(const detail::Level<D>& L, std::uint64_t k) const {
-    const std::uint64_t w = L.word_base + (k >> 6);
-    const std::uint64_t below = (std::uint64_t{1} << (k & 63)) - 1;
-    return L.bucket_base + rank_[w] + static_cast<std::uint64_t>(std::popcount(words_[w] & below));
-  }
-  /// Ranked level: the particles of the cells with keys in [k0, k1), which
-  /// are one contiguous range of the sorted array because buckets follow keys.
-  std::pair<std::uint32_t, std::uint32_t> run(const detail::Level<D>& L, std::uint64_t k0, std::uint64_t k1) const {
-    return {start_[rank(L, k0)], start_[rank(L, k1)]};
+  /// A ranked level's directory as plain pointers, buckets counted from the
+  /// level's first (so that the loops using it keep them in registers).
+  struct RankView {
+    const std::uint64_t* words;
+    const std::uint32_t* ranks;
+    const std::uint32_t* start;  // start_ from the level's first bucket
+    /// The first bucket at or after cell key k (0 <= k <= cells).
+    [[gnu::always_inline]] std::uint32_t rank(std::uint64_t k) const {
+      const std::uint64_t below = (std::uint64_t{1} << (k & 63)) - 1;
+      return ranks[k >> 6] + static_cast<std::uint32_t>(std::popcount(words[k >> 6] & below));
+    }
+    /// The particles of the cells with keys in [k0, k1), which are one
+    /// contiguous range of the sorted array because buckets follow keys.
+    [[gnu::always_inline]] std::pair<std::uint32_t, std::uint32_t> run(std::uint64_t k0, std::uint64_t k1) const {
+      return {start[rank(k0)], start[rank(k1)]};
+    }
+  };
+  RankView rank_view(const detail::Level<D>& L) const {
+    return {words_.data() + L.word_base, rank_.data() + L.word_base, start_.data() + L.bucket_base};
   }
   /// Calls f(bucket, cell key) for every non-empty cell of level L.
   template <class F>
@@ -190,13 +199,14 @@ class HGrid {
   /// +1), valid on a ranked level with at least 3 cells per periodic axis.
   struct StencilRows {
     std::array<std::int64_t, detail::kHalfStencil<D - 1>> delta{};
+    RankView dir{};  // valid on a ranked level
     bool valid = false;
     /// Periodic level with at least 5 cells per axis: between an interior
     /// cell and its neighbours |dx| < 2 s + rounding < A / 2 on every axis,
     /// so the minimum image is the plain difference.
     bool plain_dx = false;
   };
-  static StencilRows stencil_rows(const detail::Level<D>& L);
+  StencilRows stencil_rows(const detail::Level<D>& L) const;
   /// Number of cells of the same-level half stencil of the non-empty cell
   /// with coordinates c, key and bucket b (MODEL.md section 1; interior: c is
   /// on neither the first nor the last cell of any axis); calls
@@ -251,15 +261,28 @@ class HGrid {
       if (e.n == e.buf.size()) e.flush();
     }
   }
-  /// The same without a branch on the outcome: for the short candidate
-  /// lists of sparse levels, where about one check in six overlaps.
+  /// Overlap tests of p against a list of candidates, without a branch on
+  /// their outcome: for the short candidate lists of sparse levels, where
+  /// about one check in six overlaps. The buffer's fill count and p's sphere
+  /// stay in registers.
   template <class Count, Boundary TB = B, class E>
-  void test_branchless(std::uint32_t p, std::uint32_t q, E& e, Counters& out) const {
-    const bool hit = detail::overlap<D, TB>(sorted_[p], sorted_[q], box_);
-    if constexpr (Count::enabled) out.contacts += hit;
-    e.buf[e.n] = {p, q};
-    e.n += hit;
-    if (e.n == e.buf.size()) e.flush();
+  void test_list(std::uint32_t p, const std::uint32_t* cand, std::uint32_t n_cand, E& e, Counters& out) const {
+    const Sphere<D> sp = sorted_[p];
+    const Sphere<D>* const s = sorted_.data();
+    std::uint32_t n = e.n;
+    for (std::uint32_t m = 0; m < n_cand; ++m) {
+      const std::uint32_t q = cand[m];
+      const bool hit = detail::overlap<D, TB>(sp, s[q], box_);
+      if constexpr (Count::enabled) out.contacts += hit;
+      e.buf[n] = {p, q};
+      n += hit;
+      if (n == e.buf.size()) {
+        e.n = n;
+        e.flush();
+        n = 0;
+      }
+    }
+    e.n = n;
   }
 
   template <class Count, class F>

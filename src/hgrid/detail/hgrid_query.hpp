@@ -8,8 +8,9 @@
 namespace hgrid {
 
 template <int D, Boundary B>
-auto HGrid<D, B>::stencil_rows(const detail::Level<D>& L) -> StencilRows {
+auto HGrid<D, B>::stencil_rows(const detail::Level<D>& L) const -> StencilRows {
   StencilRows out;
+  if (L.ranked) out.dir = rank_view(L);
   out.valid = L.ranked && !(B == Boundary::periodic && L.small_periodic);
   out.plain_dx = B == Boundary::periodic;
   for (int a = 0; a < D; ++a) out.plain_dx = out.plain_dx && L.n[a] >= 5;
@@ -32,10 +33,10 @@ std::uint64_t HGrid<D, B>::half_stencil(const detail::Level<D>& L, const Stencil
   if (rows.valid && interior) {
     for (const std::int64_t dk : rows.delta) {
       const std::uint64_t k0 = key + static_cast<std::uint64_t>(dk) - 1;
-      const auto [qb, qe] = run(L, k0, k0 + 3);
+      const auto [qb, qe] = rows.dir.run(k0, k0 + 3);
       add(qb, qe);  // possibly empty: no branch here
     }
-    add(start_[b + 1], start_[rank(L, key + 2)]);
+    add(start_[b + 1], rows.dir.start[rows.dir.rank(key + 2)]);
     return detail::kHalfStencil<D>;
   }
   std::uint64_t cells = 0;
@@ -53,7 +54,7 @@ std::uint64_t HGrid<D, B>::half_stencil(const detail::Level<D>& L, const Stencil
   // first non-zero component is +1, plus the cell +1 of the own row.
   const std::int64_t n = L.n[D - 1];
   auto runs = [&](std::uint64_t k0, std::uint64_t k1) {
-    const auto [qb, qe] = run(L, k0, k1);
+    const auto [qb, qe] = rows.dir.run(k0, k1);
     add(qb, qe);  // possibly empty: no branch here
   };
   auto row = [&](const Coords& rc, std::int64_t lo, std::int64_t hi) {
@@ -162,32 +163,30 @@ void HGrid<D, B>::cross_level(std::uint32_t p, int h, int j, F& f, Counters& out
     // without a data-dependent branch, so that the tests run as one loop
     // instead of one short, unpredictable loop per row.
     constexpr int kBatch = 32;
-    std::array<std::pair<std::uint64_t, std::uint64_t>, kBatch> batch;
+    std::array<std::uint32_t, kBatch> batch_b, batch_e;  // bucket ranks (within the level) of each row's ends
     std::array<std::uint32_t, kShortRange * (kBatch + 1)> cand;
+    const RankView dir = rank_view(lv);
     int n_batch = 0;
     auto flush = [&] {
-      std::array<std::pair<std::uint32_t, std::uint32_t>, kBatch> ranges;
+      std::array<std::uint32_t, kBatch> qbs, qes;
       for (int i = 0; i < n_batch; ++i) {
-        ranges[i] = {start_[batch[i].first], start_[batch[i].second]};
-        __builtin_prefetch(&sorted_[ranges[i].first]);
+        qbs[i] = dir.start[batch_b[i]];
+        qes[i] = dir.start[batch_e[i]];
+        __builtin_prefetch(&sorted_[qbs[i]]);
       }
       std::uint32_t n_cand = 0;
-      for (int i = 0; i < n_batch; ++i) {
-        const auto [qb, qe] = ranges[i];
-        if (!append_short(cand, n_cand, qb, qe)) range(qb, qe);
-      }
+      for (int i = 0; i < n_batch; ++i)
+        if (!append_short(cand, n_cand, qbs[i], qes[i])) range(qbs[i], qes[i]);
       checked += n_cand;
-      if (plain) {
-        for (std::uint32_t m = 0; m < n_cand; ++m) test_branchless<Count, Boundary::walls>(p, cand[m], f, out);
-      } else {
-        for (std::uint32_t m = 0; m < n_cand; ++m) test_branchless<Count>(p, cand[m], f, out);
-      }
+      if (plain) test_list<Count, Boundary::walls>(p, cand.data(), n_cand, f, out);
+      else test_list<Count>(p, cand.data(), n_cand, f, out);
       n_batch = 0;
     };
     auto runs = [&](std::uint64_t k0, std::uint64_t k1) {
-      const std::uint64_t b0 = rank(lv, k0), b1 = rank(lv, k1);
-      __builtin_prefetch(&start_[b0]);
-      batch[n_batch] = {b0, b1};
+      const std::uint32_t b0 = dir.rank(k0), b1 = dir.rank(k1);
+      __builtin_prefetch(&dir.start[b0]);
+      batch_b[n_batch] = b0;
+      batch_e[n_batch] = b1;
       n_batch += b0 != b1;  // rows of empty cells only are dropped, without a branch
       if (n_batch == kBatch) flush();
     };
@@ -197,11 +196,28 @@ void HGrid<D, B>::cross_level(std::uint32_t p, int h, int j, F& f, Counters& out
       const std::uint64_t len = static_cast<std::uint64_t>(hi[D - 1] - lo[D - 1] + 1);
       const std::uint64_t stride = static_cast<std::uint64_t>(lv.n[D - 1]);  // between rows along axis D-2
       const std::uint64_t rows = static_cast<std::uint64_t>(hi[D - 2] - lo[D - 2] + 1);
-      for (std::int64_t x = lo[0]; x <= (D == 3 ? hi[0] : lo[0]); ++x) {  // 3D: the planes along axis 0
-        Coords first = lo;
-        first[0] = x;
-        const std::uint64_t k = lv.key(first);
-        for (std::uint64_t m = 0; m < rows; ++m) runs(k + m * stride, k + m * stride + len);
+      const std::uint64_t planes = D == 3 ? static_cast<std::uint64_t>(hi[0] - lo[0] + 1) : 1;
+      const std::uint64_t plane_stride = D == 3 ? stride * static_cast<std::uint64_t>(lv.n[D - 2]) : 0;
+      const std::uint64_t k = lv.key(lo);
+      if (rows * planes <= kBatch) {
+        // A small box (most searches of the level just below): its rows'
+        // ranges straight into the candidate list, without the batch.
+        std::uint32_t n_cand = 0;
+        for (std::uint64_t x = 0; x < planes; ++x)
+          for (std::uint64_t m = 0; m < rows; ++m) {
+            const std::uint64_t k0 = k + x * plane_stride + m * stride;
+            const auto [qb, qe] = dir.run(k0, k0 + len);
+            if (!append_short(cand, n_cand, qb, qe)) range(qb, qe);
+          }
+        checked += n_cand;
+        if (plain) test_list<Count, Boundary::walls>(p, cand.data(), n_cand, f, out);
+        else test_list<Count>(p, cand.data(), n_cand, f, out);
+      } else {
+        for (std::uint64_t x = 0; x < planes; ++x)  // 3D: the planes along axis 0
+          for (std::uint64_t m = 0; m < rows; ++m) {
+            const std::uint64_t k0 = k + x * plane_stride + m * stride;
+            runs(k0, k0 + len);
+          }
       }
     } else {
       for (Coords c = lo;;) {
@@ -279,7 +295,7 @@ Counters HGrid<D, B>::query(F&& f_user) const {
       const bool plain = rows.plain_dx && interior;
       const auto tests = [&]<Boundary TB>(std::uint32_t p) {
         for (std::uint32_t q = p + 1; q < end; ++q) test<Count, TB>(p, q, f, out);
-        for (std::uint32_t m = 0; m < n_cand; ++m) test_branchless<Count, TB>(p, cand[m], f, out);
+        test_list<Count, TB>(p, cand.data(), n_cand, f, out);
         for (int m = 0; m < n_nb; ++m)
           for (std::uint32_t q = nb[m].first; q < nb[m].second; ++q) test<Count, TB>(p, q, f, out);
       };
