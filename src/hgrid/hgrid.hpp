@@ -225,7 +225,8 @@ class HGrid {
   template <std::size_t C>
   static bool append_short(std::array<std::uint32_t, C>& cand, std::uint32_t& n, std::uint32_t qb, std::uint32_t qe) {
     if (qe - qb > kShortRange) return false;
-    for (std::uint32_t t = 0; t < kShortRange; ++t) cand[n + t] = qb + t;
+    std::uint32_t* const d = cand.data() + n;  // not cand[n + t]: 32-bit index arithmetic does not combine into one store
+    for (std::uint32_t t = 0; t < kShortRange; ++t) d[t] = qb + t;
     n += qe - qb;
     return true;
   }
