@@ -167,6 +167,11 @@ void HGrid<D, B>::cross_level(std::uint32_t p, int h, int j, F& f, Counters& out
     std::array<std::uint32_t, kShortRange * (kBatch + 1)> cand;
     const RankView dir = rank_view(lv);
     int n_batch = 0;
+    auto test_cand = [&](std::uint32_t n_cand) {
+      checked += n_cand;
+      if (plain) test_list<Count, Boundary::walls>(p, cand.data(), n_cand, f, out);
+      else test_list<Count>(p, cand.data(), n_cand, f, out);
+    };
     auto flush = [&] {
       std::array<std::uint32_t, kBatch> qbs, qes;
       for (int i = 0; i < n_batch; ++i) {
@@ -177,9 +182,7 @@ void HGrid<D, B>::cross_level(std::uint32_t p, int h, int j, F& f, Counters& out
       std::uint32_t n_cand = 0;
       for (int i = 0; i < n_batch; ++i)
         if (!append_short(cand, n_cand, qbs[i], qes[i])) range(qbs[i], qes[i]);
-      checked += n_cand;
-      if (plain) test_list<Count, Boundary::walls>(p, cand.data(), n_cand, f, out);
-      else test_list<Count>(p, cand.data(), n_cand, f, out);
+      test_cand(n_cand);
       n_batch = 0;
     };
     auto runs = [&](std::uint64_t k0, std::uint64_t k1) {
@@ -199,25 +202,21 @@ void HGrid<D, B>::cross_level(std::uint32_t p, int h, int j, F& f, Counters& out
       const std::uint64_t planes = D == 3 ? static_cast<std::uint64_t>(hi[0] - lo[0] + 1) : 1;
       const std::uint64_t plane_stride = D == 3 ? stride * static_cast<std::uint64_t>(lv.n[D - 2]) : 0;
       const std::uint64_t k = lv.key(lo);
+      auto each_row = [&](auto&& g) {  // g(first key of the row)
+        for (std::uint64_t x = 0; x < planes; ++x)  // 3D: the planes along axis 0
+          for (std::uint64_t m = 0; m < rows; ++m) g(k + x * plane_stride + m * stride);
+      };
       if (rows * planes <= kBatch) {
         // A small box (most searches of the level just below): its rows'
         // ranges straight into the candidate list, without the batch.
         std::uint32_t n_cand = 0;
-        for (std::uint64_t x = 0; x < planes; ++x)
-          for (std::uint64_t m = 0; m < rows; ++m) {
-            const std::uint64_t k0 = k + x * plane_stride + m * stride;
-            const auto [qb, qe] = dir.run(k0, k0 + len);
-            if (!append_short(cand, n_cand, qb, qe)) range(qb, qe);
-          }
-        checked += n_cand;
-        if (plain) test_list<Count, Boundary::walls>(p, cand.data(), n_cand, f, out);
-        else test_list<Count>(p, cand.data(), n_cand, f, out);
+        each_row([&](std::uint64_t k0) {
+          const auto [qb, qe] = dir.run(k0, k0 + len);
+          if (!append_short(cand, n_cand, qb, qe)) range(qb, qe);
+        });
+        test_cand(n_cand);
       } else {
-        for (std::uint64_t x = 0; x < planes; ++x)  // 3D: the planes along axis 0
-          for (std::uint64_t m = 0; m < rows; ++m) {
-            const std::uint64_t k0 = k + x * plane_stride + m * stride;
-            runs(k0, k0 + len);
-          }
+        each_row([&](std::uint64_t k0) { runs(k0, k0 + len); });
       }
     } else {
       for (Coords c = lo;;) {
