@@ -13,10 +13,13 @@ all: build
 deps:
 	@bash .ci/deps.sh
 
-$(BUILD)/CMakeCache.txt:
+# Configured once the packages are in (order-only on deps, so `make -jN` cannot
+# configure before apt-get has finished); the stamp is the generated Makefile,
+# which a failed configure does not leave behind, so a rerun configures again.
+$(BUILD)/Makefile: | deps
 	cmake -S . -B $(BUILD) $(CMAKE_FLAGS)
 
-build: deps $(BUILD)/CMakeCache.txt
+build: deps $(BUILD)/Makefile
 	cmake --build $(BUILD) -j $(JOBS)
 
 test: build
