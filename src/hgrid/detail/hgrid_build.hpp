@@ -173,7 +173,8 @@ void HGrid<D, B>::build(std::span<const Sphere<D>> spheres, Scratch& ws) {
     std::size_t most = 0;
     for (std::size_t c = 0; c + 1 < bucket_begin.size(); ++c)
       most = std::max<std::size_t>(most, bucket_begin[c + 1] - bucket_begin[c]);
-    auto &tkey = ws.tkey, &order = ws.order, &torder = ws.torder, &tid = ws.tid;
+    auto& tkey = ws.tkey;
+    auto &order = ws.order, &torder = ws.torder, &tid = ws.tid;
     auto& tsph = ws.tsph;
     for (auto* v : {&order, &torder, &tid}) v->resize(most);
     tkey.resize(most);
