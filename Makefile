@@ -5,7 +5,7 @@ JOBS  ?= $(shell nproc 2>/dev/null || echo 2)
 SCALE ?= default
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: all build test test-asan figures bench deps clean calibrate calibrate-figure
+.PHONY: all build test test-asan test-clang figures bench deps clean calibrate calibrate-figure
 
 all: build
 
@@ -31,6 +31,13 @@ test-asan:
 	cmake --build build-asan -j $(JOBS) --target hgrid_tests hgrid
 	cd build-asan && ctest --output-on-failure -j $(JOBS)
 
+# The tests built with clang++ (GCC accepts some code that clang rejects;
+# needs Debian's clang package).
+test-clang:
+	CXX=clang++ CC=clang cmake -S . -B build-clang -DCMAKE_BUILD_TYPE=Release -DHGRID_BUILD_BENCH=OFF
+	cmake --build build-clang -j $(JOBS) --target hgrid_tests hgrid
+	cd build-clang && ctest --output-on-failure -j $(JOBS)
+
 # Figures 2-10 (cost model), then 11-12 (scenes on generated packings).
 figures: build
 	bash plots/make_figures.sh $(SCALE)
@@ -49,4 +56,4 @@ bench: build
 	@for b in $(BUILD)/bench_*; do echo "== $$b"; $$b --benchmark_counters_tabular=true || exit 1; done
 
 clean:
-	rm -rf $(BUILD) build-asan
+	rm -rf $(BUILD) build-asan build-clang
