@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Installs hgridlab's Debian packages when any is missing (needs root).
+# Extra packages may be named as arguments (CI: `bash .ci/deps.sh clang`).
 set -euo pipefail
-pkgs=(build-essential cmake libgsl-dev libhdf5-dev libbenchmark-dev libgtest-dev
+pkgs=("$@"
+      build-essential cmake libgsl-dev libhdf5-dev libbenchmark-dev libgtest-dev
       libcli11-dev libtomlplusplus-dev nlohmann-json3-dev gnuplot-nox
       lammps libcgal-dev)  # the peers comparison (bench/peers): LAMMPS at run time, CGAL's headers
                            # at build time; both optional, each skipped with a message when missing
