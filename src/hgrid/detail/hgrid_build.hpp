@@ -186,6 +186,13 @@ void HGrid<D, B>::build(std::span<const Sphere<D>> spheres, Scratch& ws) {
         const std::uint32_t b = bucket_begin[c], n = bucket_begin[c + 1] - b;
         const std::uint64_t* k = key + b;
         if (n >= 2) {
+          // The permutation below reads the bucket's particles in random
+          // order, and the scatter wrote them long ago (out of the cache at
+          // large N): ask for all of them first, in address order, so that
+          // the loads overlap with the key sort instead of each waiting for
+          // memory (build at N = 10^6: about -1.5 ns/particle).
+          for (std::uint32_t m = 0; m < n; m += 2) __builtin_prefetch(&sorted_[b + m]);
+          for (std::uint32_t m = 0; m < n; m += 16) __builtin_prefetch(&id_[b + m]);
           for (std::uint32_t m = 0; m < n; ++m) order[m] = m;
           detail::radix_sort_pairs(key + b, order.data(), tkey.data(), torder.data(), n, shift[h]);
           for (std::uint32_t m = 0; m < n; ++m) {
