@@ -5,6 +5,7 @@ set -euo pipefail
 pkgs=("$@"
       build-essential cmake libgsl-dev libhdf5-dev libbenchmark-dev libgtest-dev
       libcli11-dev libtomlplusplus-dev nlohmann-json3-dev gnuplot-nox
+      jq  # plots/calibration.sh (make calibrate-figure) reads the tool's JSON
       lammps libcgal-dev)  # the peers comparison (bench/peers): LAMMPS at run time, CGAL's headers
                            # at build time; both optional, each skipped with a message when missing
 missing=()
