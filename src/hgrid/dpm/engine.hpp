@@ -4,7 +4,11 @@
 // Why rebuilt: hgrid::HGrid is an immutable value type laid out by a counting
 // sort; a rebuild is O(N) with a small constant (about one query's cost for
 // the linked cell at this density), needs no skin or displacement bookkeeping,
-// and keeps the contact set exact at every step.
+// and keeps the contact set exact at every step. One grid is kept and
+// rebuilt in place (HGrid::rebuild), and the force buffers are kept too, so
+// that a step allocates nothing: with fresh arrays every step, glibc's
+// malloc handed memory back to the kernel and took it again, and the page
+// faults cost more than the step's work on some machines.
 //
 // Velocity-dependent forces (dashpot, friction) use the predicted velocity
 // v_n + dt a_n (second order), so the restitution of a resolved contact
@@ -13,6 +17,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -194,17 +199,19 @@ class Engine final : public Simulation {
 
   void compute_forces() {
     auto t0 = Clock::now();
-    HGrid<D, B> grid(s_, box_, grid_params_);
+    if (grid_) grid_->rebuild(s_);
+    else grid_.emplace(s_, box_, grid_params_);
     const auto t_built = Clock::now();
     pairs_.clear();
-    grid.template query<Search::top_down>([&](std::uint32_t i, std::uint32_t j) { pairs_.push_back({i, j}); });
+    grid_->template query<Search::top_down>([&](std::uint32_t i, std::uint32_t j) { pairs_.push_back({i, j}); });
     stats_.seconds_grid_build += std::chrono::duration<double>(t_built - t0).count();
     stats_.seconds_query += seconds_since(t_built);
     stats_.seconds_contact_detection += seconds_since(t0);
 
     t0 = Clock::now();
     const std::size_t n = s_.size();
-    std::vector<Vec<D>> fnew(n, Vec<D>{});
+    std::vector<Vec<D>>& fnew = fnew_;
+    fnew.assign(n, Vec<D>{});  // keeps its capacity: f_ and fnew_ swap every step
     if constexpr (Friction) tq_.assign(n, Spin<D>{});
     if constexpr (Gravity) {
       for (std::size_t i = 0; i < n; ++i)
@@ -300,6 +307,8 @@ class Engine final : public Simulation {
   std::vector<Spin<D>> w_, tq_;  // only with friction
   std::vector<double> inv_I_;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs_;
+  std::optional<HGrid<D, B>> grid_;  // built at the first step, rebuilt at every later one
+  std::vector<Vec<D>> fnew_;         // the forces being computed (swapped with f_)
   StepStats stats_;
   double time_ = 0;
 };
