@@ -288,7 +288,7 @@ int main(int argc, char** argv) {
   app.add_option("--seed", o.spec.seed, "seed")->default_val(1);
   app.add_option("--cache", o.cache, "packing cache directory")->default_val("results/packings");
   app.add_option("--work", o.work, "LAMMPS work directory (default results/peers/lammps-nN)");
-  app.add_option("--repeats", o.repeats, "in-process tools: best of this many runs")->default_val(3);
+  app.add_option("--repeats", o.repeats, "CGAL and hgridlab with a new grid per build: best of this many builds")->default_val(3);
   app.add_option("--builds", o.builds, "timed builds per LAMMPS multi run and per hgridlab sample")->default_val(5);
   app.add_option("--bin-builds", o.bin_builds, "LAMMPS bin: timed builds")->default_val(1);
   app.add_option("--scan", o.scan, "LAMMPS multi class scan: auto|full|small")->default_val("auto");
