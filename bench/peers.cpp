@@ -231,11 +231,10 @@ int run(Options o) {
   take_sample();
   secs["hgrid"] = *std::min_element(samples.begin(), samples.end());
   j["hgrid_samples_seconds_per_build"] = samples;
-  j["hgrid_first_sample_seconds_per_build"] = samples.front();
   j["timing"] = "per tool: mean of " + std::to_string(o.builds) +
                 " consecutive builds per run or sample, after one untimed build (LAMMPS: its setup); hgrid: best of its "
-                "samples, taken before, between and after "
-                "the other tools' runs; lammps_multi: best class set; cgal, hgrid_new_grid: best of " +
+                "samples, taken before, between and after the other tools' runs; lammps_multi: best class set; cgal, "
+                "hgrid_new_grid: best of " +
                 std::to_string(o.repeats) + " single builds";
   bool agree = samples_agree;
   if (!samples_agree) j["hgrid_samples_error"] = "the samples found different pair counts";
