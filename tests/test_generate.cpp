@@ -7,9 +7,11 @@
 #include <fstream>
 #include <unistd.h>
 
+#include "hgrid/detail/gen_pairs.hpp"
 #include "hgrid/error.hpp"
 #include "hgrid/generate.hpp"
 #include "hgrid/rcp.hpp"
+#include "support.hpp"
 
 namespace hgrid {
 namespace {
@@ -130,6 +132,28 @@ TEST(Generate, GrowthReachesDenseEqualVolumeDistribution) {
     const PackingQuality q = assess_packing(p, nullptr);
     EXPECT_LE(q.max_rel_overlap, kRelaxedOverlapTol);
   }
+}
+
+// The FIRE relaxation sums forces over these lists: they must hold exactly
+// the brute-force pairs, each partner list ascending, whatever order the grid
+// found them in (else the packing of a seed changes with the grid's traversal).
+template <int D, Boundary B>
+void expect_canonical_lists(std::uint64_t seed) {
+  const auto sc = test::random_scene<D>(1500, 0.5, -2, 10, B, seed);
+  std::vector<std::uint32_t> start, nbr;
+  detail::neighbour_lists<D, B>(std::span<const Sphere<D>>(sc.spheres), sc.box, start, nbr);
+  std::vector<test::Pair> got;
+  for (std::uint32_t i = 0; i + 1 < start.size(); ++i)
+    for (std::uint32_t m = start[i]; m < start[i + 1]; ++m) got.emplace_back(i, nbr[m]);
+  EXPECT_FALSE(got.empty());
+  EXPECT_EQ(got, (test::brute_pairs<D, B>(sc))) << "seed " << seed;
+}
+
+TEST(Generate, NeighbourListsAreTheBrutePairsInCanonicalOrder) {
+  expect_canonical_lists<3, Boundary::periodic>(kSeed);
+  expect_canonical_lists<3, Boundary::walls>(kSeed + 1);
+  expect_canonical_lists<2, Boundary::periodic>(kSeed + 2);
+  expect_canonical_lists<2, Boundary::walls>(kSeed + 3);
 }
 
 TEST(Generate, SameSeedSamePacking) {

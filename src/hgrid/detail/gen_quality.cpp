@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <vector>
 
 #include "hgrid/detail/gen_common.hpp"
 #include "hgrid/detail/gen_pairs.hpp"
@@ -29,7 +30,7 @@ void pair_figures(const Packing& p, PackingQuality& q) {
   auto spheres = p.spheres<D>();
   for (auto& s : spheres) s.r *= 1 + kContactGap;
   std::uint64_t contacts = 0;
-  double sum = 0;
+  std::vector<double> rels;  // summed in sorted order: the mean does not depend on the grid's pair order
   const Extent<D> box = p.extent<D>();
   detail::for_each_overlapping<D, B>(std::span<const Sphere<D>>(spheres), box, [&](std::uint32_t i, std::uint32_t j) {
     std::array<double, D> a, b;
@@ -43,7 +44,7 @@ void pair_figures(const Packing& p, PackingQuality& q) {
     if (dist < rs) {
       const double rel = (rs - dist) / rs;
       ++q.overlapping_pairs;
-      sum += rel;
+      rels.push_back(rel);
       q.max_rel_overlap = std::max(q.max_rel_overlap, rel);
     }
   });
@@ -55,6 +56,8 @@ void pair_figures(const Packing& p, PackingQuality& q) {
         if (over > 0) q.max_rel_overlap = std::max(q.max_rel_overlap, over / r);
       }
   }
+  std::sort(rels.begin(), rels.end());
+  const double sum = std::accumulate(rels.begin(), rels.end(), 0.0);
   q.mean_rel_overlap = q.overlapping_pairs ? sum / static_cast<double>(q.overlapping_pairs) : 0.0;
   q.mean_contacts = p.size() ? 2.0 * static_cast<double>(contacts) / static_cast<double>(p.size()) : 0.0;
 }

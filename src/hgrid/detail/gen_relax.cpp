@@ -3,7 +3,8 @@
 // convergence criterion. Unit masses; a pair's stiffness 1/sigma^2 makes a big
 // sphere with many small neighbours no stiffer than a small one, so one time
 // step suits all. Contacts come from a Verlet list (skin kSkin r_i) built with
-// the HGrid and rebuilt only when a sphere has moved or grown through its skin.
+// the HGrid and rebuilt only when a sphere has moved or grown through its skin;
+// its partner lists are sorted, so the packing does not depend on the grid.
 #include "hgrid/detail/gen_relax.hpp"
 
 #include <algorithm>
@@ -107,14 +108,7 @@ class Relaxer {
       s[i].r = lambda_ * r_[i] * (1 + kSkin);
       xref_[i] = x_[i];
     }
-    start_.assign(n + 1, 0);
-    for_each_overlapping<D, B>(std::span<const Sphere<D>>(s), box_,
-                               [this](std::uint32_t i, std::uint32_t) { ++start_[i + 1]; });
-    std::partial_sum(start_.begin(), start_.end(), start_.begin());
-    nbr_.assign(start_[n], 0);
-    std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
-    for_each_overlapping<D, B>(std::span<const Sphere<D>>(s), box_,
-                               [&](std::uint32_t i, std::uint32_t j) { nbr_[fill[i]++] = j; });
+    neighbour_lists<D, B>(std::span<const Sphere<D>>(s), box_, start_, nbr_);  // sorted: see there
     // Stiffest sphere: sum of its pairs' stiffness 1/sigma^2 (an upper bound).
     std::vector<double> k(n, 0.0);
     for (std::size_t i = 0; i < n; ++i)
