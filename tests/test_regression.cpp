@@ -41,10 +41,15 @@ std::vector<Row> read_csv(const std::string& path) {
   return rows;
 }
 
-/// Runs a regression scene once (into a temporary directory) for all tests
-/// here; its CSV is copied to <tmp>/hgridlab_<scene>_last.csv.
-const std::vector<PointResult>& regression_run(const std::string& name = "regression") {
-  static std::map<std::string, std::vector<PointResult>> runs;
+struct RegressionRun {
+  std::vector<PointResult> results;
+  std::vector<Row> csv;  // the scene's CSV as written, read before its directory goes
+};
+
+/// Runs a regression scene once per test process (into a private temporary
+/// directory: ctest runs tests in parallel processes).
+const RegressionRun& regression_scene(const std::string& name) {
+  static std::map<std::string, RegressionRun> runs;
   if (const auto it = runs.find(name); it != runs.end()) return it->second;
   const fs::path dir = fs::temp_directory_path() / ("hgridlab_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
@@ -54,21 +59,22 @@ const std::vector<PointResult>& regression_run(const std::string& name = "regres
   opt.jobs = 2;
   opt.progress = false;
   const Scene scene = load_scene(std::string(HGRID_SOURCE_DIR) + "/experiments/" + name + ".toml", "default");
-  auto r = run_scene(scene, opt);
-  fs::copy_file(dir / (name + ".csv"), fs::temp_directory_path() / ("hgridlab_" + name + "_last.csv"),
-                fs::copy_options::overwrite_existing);
+  RegressionRun run{run_scene(scene, opt), {}};
+  run.csv = read_csv((dir / (name + ".csv")).string());
   fs::remove_all(dir);
-  return runs[name] = std::move(r);
+  return runs[name] = std::move(run);
 }
+
+const std::vector<PointResult>& regression_run() { return regression_scene("regression").results; }
 
 // Counts must not change silently. To accept a deliberate change, regenerate
 // the baseline (see the scene file) in the same commit and give the reason in
 // its message.
 void expect_baseline(const std::string& name) {
-  const auto& results = regression_run(name);
+  const RegressionRun& run = regression_scene(name);
   const auto base = read_csv(std::string(HGRID_SOURCE_DIR) + "/results/baselines/" + name + ".csv");
-  ASSERT_EQ(base.size(), results.size()) << "the scene and its baseline have different points";
-  const auto now = read_csv((fs::temp_directory_path() / ("hgridlab_" + name + "_last.csv")).string());
+  ASSERT_EQ(base.size(), run.results.size()) << "the scene and its baseline have different points";
+  const auto& now = run.csv;
   ASSERT_EQ(now.size(), base.size());
   for (std::size_t i = 0; i < base.size(); ++i) {
     SCOPED_TRACE("row " + std::to_string(i + 1) + ": " + base[i].at("boundary") + " " + base[i].at("search") +
