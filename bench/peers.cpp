@@ -34,7 +34,7 @@ using Clock = std::chrono::steady_clock;
 struct Options {
   PackingSpec spec;
   std::string placement = "excluded", boundary = "periodic", cache = "results/packings", work, csv, scan = "auto";
-  int repeats = 3, builds = 5, bin_builds = 1;
+  int repeats = 3, builds = 5, bin_builds = 1, lammps_reruns = 2;
   bool as_json = false, no_cgal = false, no_lammps = false, no_bin = false, linked_cell = false, no_linked_cell = false;
 };
 
@@ -97,28 +97,57 @@ json run_lammps_tools(const Options& o, const Packing& p, const std::string& lmp
   LammpsScript s;
   s.builds = o.builds;
   std::vector<double> best_c;
-  for (auto [k, smallest] : scan_candidates(o.scan, p, dmin)) {
-    s.collections = geometric_collections(p, k, smallest);
+  std::vector<std::uint64_t> pair_counts;
+  // One run per class set; then the two fastest sets run again, as hgridlab
+  // is sampled again between the runs: LAMMPS multi's time for the same set
+  // varies by up to a third between runs on an otherwise quiet machine (its
+  // finest class's bins take hundreds of MB), and a single run would let
+  // that fall on LAMMPS alone.
+  auto attempt = [&](const std::vector<double>& collections, json& row) {
+    s.collections = collections;
     export_lammps(dir, p, s);
     const LammpsResult r = run_lammps(lmp, dir, "in.multi.lmp");
     after_run();
-    json row{{"collections", s.collections}, {"ok", r.ok}};
-    if (r.ok) {
-      row["seconds_per_build"] = r.seconds_per_build();
-      row["comm_seconds_per_build"] = r.comm_seconds / static_cast<double>(std::max<std::uint64_t>(r.builds, 1));
-      row["pairs"] = r.pairs;
-      if (r.seconds_per_build() < best) best = r.seconds_per_build(), best_c = s.collections, multi_pairs = r.pairs;
-    } else {
+    row["collections"] = collections;
+    row["ok"] = r.ok;
+    if (!r.ok) {
       row["error"] = r.error;
+      return 1e300;
     }
+    row["seconds_per_build"] = r.seconds_per_build();
+    row["comm_seconds_per_build"] = r.comm_seconds / static_cast<double>(std::max<std::uint64_t>(r.builds, 1));
+    row["pairs"] = r.pairs;
+    if (!pair_counts.empty() && r.pairs != pair_counts.front())
+      out["lammps_multi_pairs_error"] = "runs found different pair counts";
+    pair_counts.push_back(r.pairs);
+    if (r.seconds_per_build() < best) best = r.seconds_per_build(), best_c = collections, multi_pairs = r.pairs;
+    return r.seconds_per_build();
+  };
+  std::vector<std::pair<double, std::vector<double>>> ranked;
+  for (auto [k, smallest] : scan_candidates(o.scan, p, dmin)) {
+    json row;
+    const auto c = geometric_collections(p, k, smallest);
+    ranked.push_back({attempt(c, row), c});
     std::cerr << "peers: lammps multi " << row.dump() << "\n";
     scan.push_back(row);
+  }
+  std::sort(ranked.begin(), ranked.end());
+  json reruns = json::array();
+  for (std::size_t m = 0; m < std::min<std::size_t>(2, ranked.size()); ++m) {
+    if (ranked[m].first >= 1e300) break;
+    for (int r = 0; r < o.lammps_reruns; ++r) {
+      json row;
+      attempt(ranked[m].second, row);
+      std::cerr << "peers: lammps multi again " << row.dump() << "\n";
+      reruns.push_back(row);
+    }
   }
   if (best < 1e300) {
     multi_s = best;
     out["lammps_multi_collections"] = best_c;
   }
   out["lammps_multi_scan"] = scan;
+  out["lammps_multi_reruns"] = reruns;
   if (!o.no_bin) {
     s.builds = o.bin_builds;
     s.collections = best_c.empty() ? geometric_collections(p, 1, dmin) : best_c;
@@ -141,6 +170,7 @@ int run(Options o) {
   if (o.builds < 1) throw InputError("builds", "must be >= 1");
   if (o.repeats < 1) throw InputError("repeats", "must be >= 1");
   if (o.bin_builds < 1) throw InputError("bin-builds", "must be >= 1");
+  if (o.lammps_reruns < 0) throw InputError("lammps-reruns", "must be >= 0");
   const Packing p = cached_packing(o.spec, o.cache);
   const double n = static_cast<double>(p.size());
   json j{{"n", p.size()}, {"d", p.d}, {"nu", o.spec.nu}, {"alpha", o.spec.alpha}, {"omega", o.spec.omega},
@@ -233,7 +263,8 @@ int run(Options o) {
   j["hgrid_samples_seconds_per_build"] = samples;
   j["timing"] = "per tool: mean of " + std::to_string(o.builds) +
                 " consecutive builds per run or sample, after one untimed build (LAMMPS: its setup); hgrid: best of its "
-                "samples, taken before, between and after the other tools' runs; lammps_multi: best class set; cgal, "
+                "samples, taken before, between and after the other tools' runs; lammps_multi: best run of the class sets, the two fastest run 1 + " +
+                std::to_string(o.lammps_reruns) + " times; cgal, "
                 "hgrid_new_grid: best of " +
                 std::to_string(o.repeats) + " single builds";
   bool agree = samples_agree;
@@ -243,7 +274,7 @@ int run(Options o) {
     if (pairs[name] != pairs["hgrid"]) agree = false;
     if (name != "hgrid") j["ratio_vs_" + name] = s / secs["hgrid"];
   }
-  if (j.contains("hgrid_new_grid_error")) agree = false;
+  if (j.contains("hgrid_new_grid_error") || j.contains("lammps_multi_pairs_error")) agree = false;
   j["pairs_agree"] = agree;
   std::FILE* t = o.as_json ? stderr : stdout;
   std::fprintf(t, "n = %zu, nu = %g, %s, %s, load average %.2f; time per build (per particle), pairs, tool time / hgrid time\n",
@@ -290,6 +321,9 @@ int main(int argc, char** argv) {
   app.add_option("--repeats", o.repeats, "CGAL and hgridlab with a new grid per build: best of this many builds")->default_val(3);
   app.add_option("--builds", o.builds, "timed builds per LAMMPS multi run and per hgridlab sample")->default_val(5);
   app.add_option("--bin-builds", o.bin_builds, "LAMMPS bin: timed builds")->default_val(1);
+  app.add_option("--lammps-reruns", o.lammps_reruns,
+                 "LAMMPS multi: runs again of each of the two fastest class sets of the scan")
+      ->default_val(2);
   app.add_option("--scan", o.scan, "LAMMPS multi class scan: auto|full|small")->default_val("auto");
   app.add_option("--csv", o.csv, "append one row per tool to this CSV");
   app.add_flag("--json", o.as_json, "JSON on stdout (the table goes to stderr)");
