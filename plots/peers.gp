@@ -7,13 +7,13 @@ else { set terminal pngcairo enhanced size 900,630 font 'Helvetica,12' }
 set output out
 set datafile separator ','
 set datafile columnheaders
-set key at graph 0.98, graph 0.29 right top box opaque  # between the hgridlab line (1) and LAMMPS multi (~10)
+set key at graph 0.02, graph 0.98 left top box opaque  # above every curve: the y range leaves room
 set xlabel 'packing fraction {/Symbol n}'
 set ylabel 'time per build / hgridlab HGrid time'
 set logscale y
 set grid
 set xrange [0:0.65]
-set yrange [0.8:*]
+set yrange [0.8:1e5]  # room for the key above LAMMPS bin (at most ~2000x)
 if (!exists("placement")) placement = 'excluded'
 set title sprintf('hgridlab vs peers: {/Symbol a} = -3, {/Symbol w} = 100, d = 3, periodic, %s', placement)
 if (!exists("tools")) tools = "lammps_multi lammps_bin cgal"
