@@ -13,7 +13,17 @@
 // Velocity-dependent forces (dashpot, friction) use the predicted velocity
 // v_n + dt a_n (second order), so the restitution of a resolved contact
 // converges as dt^2.
+//
+// Contacts are handled in canonical order, (i, j) ascending, not in the
+// order the grid finds them: a particle's forces are summed in an order that
+// does not depend on the cell sizes, the number of levels, the search
+// direction or the grid's internals, so the trajectory is a property of the
+// scene alone (the optimal grid and the linked cell run the same simulation,
+// bit for bit). The sort is an LSD radix sort of the packed pair keys, timed
+// with the forces, not with the contact detection.
 #pragma once
+#include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -23,6 +33,7 @@
 #include <vector>
 
 #include "hgrid/dpm/contact_law.hpp"
+#include "hgrid/detail/radix.hpp"
 #include "hgrid/dpm/simulation.hpp"
 #include "hgrid/hgrid.hpp"
 
@@ -58,6 +69,8 @@ class Engine final : public Simulation {
     v_.assign(n, Vec<D>{});
     f_.assign(n, Vec<D>{});
     m_.resize(n);
+    pair_bits_ = std::max(1, static_cast<int>(std::bit_width(n > 0 ? n - 1 : 0)));
+    pair_mask_ = (std::uint64_t{1} << pair_bits_) - 1;
     for (std::size_t i = 0; i < n; ++i) {
       for (int k = 0; k < D; ++k) v_[i][k] = vel.empty() ? 0.0 : vel[i * D + k];
       const double r = s_[i].r;
@@ -124,11 +137,14 @@ class Engine final : public Simulation {
 
   double elastic_energy() const override {
     double e = 0;
-    HGrid<D, B> grid(s_, box_, grid_params_);
-    grid.template query<Search::top_down>([&](std::uint32_t i, std::uint32_t j) {
+    const HGrid<D, B> grid(s_, box_, grid_params_);
+    std::vector<std::uint64_t> keys, tmp;
+    canonical_pairs(grid, keys, tmp);
+    for (const std::uint64_t key : keys) {
+      const auto i = static_cast<std::uint32_t>(key >> pair_bits_), j = static_cast<std::uint32_t>(key & pair_mask_);
       const double dist = std::sqrt(detail::dist2<D, B>(s_[i].x, s_[j].x, box_));
       e += law_.energy(m_[i] * m_[j] / (m_[i] + m_[j]), s_[i].r + s_[j].r - dist);
-    });
+    }
     if constexpr (B == Boundary::walls)
       for (std::size_t i = 0; i < s_.size(); ++i)
         for (int k = 0; k < D; ++k) {
@@ -202,13 +218,15 @@ class Engine final : public Simulation {
     if (grid_) grid_->rebuild(s_);
     else grid_.emplace(s_, box_, grid_params_);
     const auto t_built = Clock::now();
-    pairs_.clear();
-    grid_->template query<Search::top_down>([&](std::uint32_t i, std::uint32_t j) { pairs_.push_back({i, j}); });
+    keys_.clear();
+    grid_->template query<Search::top_down>([&](std::uint32_t i, std::uint32_t j) { keys_.push_back(pair_key(i, j)); });
     stats_.seconds_grid_build += std::chrono::duration<double>(t_built - t0).count();
     stats_.seconds_query += seconds_since(t_built);
     stats_.seconds_contact_detection += seconds_since(t0);
 
     t0 = Clock::now();
+    tkeys_.resize(keys_.size());
+    detail::radix_sort_keys(keys_.data(), tkeys_.data(), keys_.size(), 2 * pair_bits_);
     const std::size_t n = s_.size();
     std::vector<Vec<D>>& fnew = fnew_;
     fnew.assign(n, Vec<D>{});  // keeps its capacity: f_ and fnew_ swap every step
@@ -218,7 +236,8 @@ class Engine final : public Simulation {
         for (int k = 0; k < D; ++k) fnew[i][k] = m_[i] * c_.g[k];
       stats_.gravity_evaluations += n;
     }
-    for (const auto& [i, j] : pairs_) {
+    for (const std::uint64_t key : keys_) {
+      const auto i = static_cast<std::uint32_t>(key >> pair_bits_), j = static_cast<std::uint32_t>(key & pair_mask_);
       Vec<D> d;
       double d2 = 0;
       for (int k = 0; k < D; ++k) {
@@ -260,7 +279,7 @@ class Engine final : public Simulation {
         }
       }
     }
-    stats_.pair_contacts += pairs_.size();
+    stats_.pair_contacts += keys_.size();
     if constexpr (B == Boundary::walls) wall_forces(fnew);
     f_.swap(fnew);
     stats_.seconds_forces += seconds_since(t0);
@@ -306,7 +325,17 @@ class Engine final : public Simulation {
   std::vector<double> m_;
   std::vector<Spin<D>> w_, tq_;  // only with friction
   std::vector<double> inv_I_;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs_;
+  // A contact pair (i < j, input indices) as one key, i in the high bits.
+  std::uint64_t pair_key(std::uint32_t i, std::uint32_t j) const { return (std::uint64_t{i} << pair_bits_) | j; }
+  /// The pairs of `grid`, sorted into canonical order.
+  void canonical_pairs(const HGrid<D, B>& grid, std::vector<std::uint64_t>& keys, std::vector<std::uint64_t>& tmp) const {
+    grid.template query<Search::top_down>([&](std::uint32_t i, std::uint32_t j) { keys.push_back(pair_key(i, j)); });
+    tmp.resize(keys.size());
+    detail::radix_sort_keys(keys.data(), tmp.data(), keys.size(), 2 * pair_bits_);
+  }
+  int pair_bits_ = 1;  // bits of the largest index
+  std::uint64_t pair_mask_ = 1;
+  std::vector<std::uint64_t> keys_, tkeys_;  // this step's contact pairs, and scratch
   std::optional<HGrid<D, B>> grid_;  // built at the first step, rebuilt at every later one
   std::vector<Vec<D>> fnew_;         // the forces being computed (swapped with f_)
   StepStats stats_;
