@@ -219,7 +219,7 @@ class Engine final : public Simulation {
     else grid_.emplace(s_, box_, grid_params_);
     const auto t_built = Clock::now();
     keys_.clear();
-    grid_->template query<Search::top_down>([&](std::uint32_t i, std::uint32_t j) { keys_.push_back(pair_key(i, j)); });
+    grid_->for_each_pair([&](std::uint32_t i, std::uint32_t j) { keys_.push_back(pair_key(i, j)); });
     stats_.seconds_grid_build += std::chrono::duration<double>(t_built - t0).count();
     stats_.seconds_query += seconds_since(t_built);
     stats_.seconds_contact_detection += seconds_since(t0);
@@ -329,7 +329,7 @@ class Engine final : public Simulation {
   std::uint64_t pair_key(std::uint32_t i, std::uint32_t j) const { return (std::uint64_t{i} << pair_bits_) | j; }
   /// The pairs of `grid`, sorted into canonical order.
   void canonical_pairs(const HGrid<D, B>& grid, std::vector<std::uint64_t>& keys, std::vector<std::uint64_t>& tmp) const {
-    grid.template query<Search::top_down>([&](std::uint32_t i, std::uint32_t j) { keys.push_back(pair_key(i, j)); });
+    grid.for_each_pair([&](std::uint32_t i, std::uint32_t j) { keys.push_back(pair_key(i, j)); });
     tmp.resize(keys.size());
     detail::radix_sort_keys(keys.data(), tmp.data(), keys.size(), 2 * pair_bits_);
   }
