@@ -1,6 +1,7 @@
 // DPM engine: restitution of a resolved head-on collision, energy conservation
 // without dissipation, wall bounces, momentum in a periodic box, the time-step
-// check and the effect counters (switched-off effects do no work).
+// check, the effect counters (switched-off effects do no work) and a
+// trajectory that does not depend on the grid.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -177,12 +178,6 @@ TEST(Dpm, FreeFallUnderGravityIsExact) {
   EXPECT_NEAR(sim->positions()[1], 90 - 0.5 * 25, 1e-9);
   EXPECT_NEAR(sim->velocities()[1], -5, 1e-12);
 }
-
-}  // namespace
-}  // namespace hgrid::dpm
-
-namespace hgrid::dpm {
-namespace {
 
 // The trajectory is a property of the scene, not of the contact detection:
 // forces are summed in the same order whatever grid (sizes, levels, search

@@ -32,8 +32,8 @@
 #include <string>
 #include <vector>
 
-#include "hgrid/dpm/contact_law.hpp"
 #include "hgrid/detail/radix.hpp"
+#include "hgrid/dpm/contact_law.hpp"
 #include "hgrid/dpm/simulation.hpp"
 #include "hgrid/hgrid.hpp"
 
