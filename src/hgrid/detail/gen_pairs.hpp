@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "hgrid/detail/pair_keys.hpp"
 #include "hgrid/hgrid.hpp"
 
 namespace hgrid::detail {
@@ -38,19 +39,24 @@ void for_each_overlapping(std::span<const Sphere<D>> spheres, const Extent<D>& b
 /// Neighbour lists in compressed rows: the partners j > i of sphere i (pairs
 /// closer than r_i + r_j) are nbr[start[i]] .. nbr[start[i + 1] - 1], in
 /// ascending order. The grid finds pairs in an order of its own, which
-/// changes with its cell sizes and its traversal; sorted lists make every sum
-/// over them (forces in the FIRE relaxation) a function of the spheres only.
+/// changes with its cell sizes and its traversal; lists in canonical order
+/// make every sum over them (forces in the FIRE relaxation) a function of the
+/// spheres only.
 template <int D, Boundary B>
 void neighbour_lists(std::span<const Sphere<D>> spheres, const Extent<D>& box, std::vector<std::uint32_t>& start,
                      std::vector<std::uint32_t>& nbr) {
   const std::size_t n = spheres.size();
+  const PairKeys pk(n);
+  std::vector<std::uint64_t> keys, tmp;
+  for_each_overlapping<D, B>(spheres, box, [&](std::uint32_t i, std::uint32_t j) { keys.push_back(pk.key(i, j)); });
+  pk.sort(keys, tmp);
   start.assign(n + 1, 0);
-  for_each_overlapping<D, B>(spheres, box, [&](std::uint32_t i, std::uint32_t) { ++start[i + 1]; });
+  nbr.resize(keys.size());
+  for (std::size_t m = 0; m < keys.size(); ++m) {
+    ++start[pk.first(keys[m]) + 1];
+    nbr[m] = pk.second(keys[m]);
+  }
   for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
-  nbr.assign(start[n], 0);
-  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-  for_each_overlapping<D, B>(spheres, box, [&](std::uint32_t i, std::uint32_t j) { nbr[fill[i]++] = j; });
-  for (std::size_t i = 0; i < n; ++i) std::sort(nbr.begin() + start[i], nbr.begin() + start[i + 1]);
 }
 
 }  // namespace hgrid::detail

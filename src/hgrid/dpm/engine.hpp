@@ -23,7 +23,6 @@
 // with the forces, not with the contact detection.
 #pragma once
 #include <algorithm>
-#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -32,7 +31,7 @@
 #include <string>
 #include <vector>
 
-#include "hgrid/detail/radix.hpp"
+#include "hgrid/detail/pair_keys.hpp"
 #include "hgrid/dpm/contact_law.hpp"
 #include "hgrid/dpm/simulation.hpp"
 #include "hgrid/hgrid.hpp"
@@ -63,14 +62,12 @@ class Engine final : public Simulation {
 
  public:
   Engine(const DpmConfig& c, const Packing& p, const std::vector<double>& vel)
-      : c_(c), law_(SpringDashpot::from(c.contact_time, c.restitution)), s_(p.spheres<D>()) {
+      : c_(c), law_(SpringDashpot::from(c.contact_time, c.restitution)), s_(p.spheres<D>()), pk_(s_.size()) {
     for (int k = 0; k < D; ++k) box_[k] = c.box[k];
     const std::size_t n = s_.size();
     v_.assign(n, Vec<D>{});
     f_.assign(n, Vec<D>{});
     m_.resize(n);
-    pair_bits_ = std::max(1, static_cast<int>(std::bit_width(n > 0 ? n - 1 : 0)));
-    pair_mask_ = (std::uint64_t{1} << pair_bits_) - 1;
     for (std::size_t i = 0; i < n; ++i) {
       for (int k = 0; k < D; ++k) v_[i][k] = vel.empty() ? 0.0 : vel[i * D + k];
       const double r = s_[i].r;
@@ -139,9 +136,10 @@ class Engine final : public Simulation {
     double e = 0;
     const HGrid<D, B> grid(s_, box_, grid_params_);
     std::vector<std::uint64_t> keys, tmp;
-    canonical_pairs(grid, keys, tmp);
+    grid.for_each_pair([&](std::uint32_t i, std::uint32_t j) { keys.push_back(pk_.key(i, j)); });
+    pk_.sort(keys, tmp);
     for (const std::uint64_t key : keys) {
-      const auto i = static_cast<std::uint32_t>(key >> pair_bits_), j = static_cast<std::uint32_t>(key & pair_mask_);
+      const std::uint32_t i = pk_.first(key), j = pk_.second(key);
       const double dist = std::sqrt(detail::dist2<D, B>(s_[i].x, s_[j].x, box_));
       e += law_.energy(m_[i] * m_[j] / (m_[i] + m_[j]), s_[i].r + s_[j].r - dist);
     }
@@ -219,14 +217,13 @@ class Engine final : public Simulation {
     else grid_.emplace(s_, box_, grid_params_);
     const auto t_built = Clock::now();
     keys_.clear();
-    grid_->for_each_pair([&](std::uint32_t i, std::uint32_t j) { keys_.push_back(pair_key(i, j)); });
+    grid_->for_each_pair([&](std::uint32_t i, std::uint32_t j) { keys_.push_back(pk_.key(i, j)); });
     stats_.seconds_grid_build += std::chrono::duration<double>(t_built - t0).count();
     stats_.seconds_query += seconds_since(t_built);
     stats_.seconds_contact_detection += seconds_since(t0);
 
     t0 = Clock::now();
-    tkeys_.resize(keys_.size());
-    detail::radix_sort_keys(keys_.data(), tkeys_.data(), keys_.size(), 2 * pair_bits_);
+    pk_.sort(keys_, tkeys_);
     const std::size_t n = s_.size();
     std::vector<Vec<D>>& fnew = fnew_;
     fnew.assign(n, Vec<D>{});  // keeps its capacity: f_ and fnew_ swap every step
@@ -237,7 +234,7 @@ class Engine final : public Simulation {
       stats_.gravity_evaluations += n;
     }
     for (const std::uint64_t key : keys_) {
-      const auto i = static_cast<std::uint32_t>(key >> pair_bits_), j = static_cast<std::uint32_t>(key & pair_mask_);
+      const std::uint32_t i = pk_.first(key), j = pk_.second(key);
       Vec<D> d;
       double d2 = 0;
       for (int k = 0; k < D; ++k) {
@@ -325,16 +322,7 @@ class Engine final : public Simulation {
   std::vector<double> m_;
   std::vector<Spin<D>> w_, tq_;  // only with friction
   std::vector<double> inv_I_;
-  // A contact pair (i < j, input indices) as one key, i in the high bits.
-  std::uint64_t pair_key(std::uint32_t i, std::uint32_t j) const { return (std::uint64_t{i} << pair_bits_) | j; }
-  /// The pairs of `grid`, sorted into canonical order.
-  void canonical_pairs(const HGrid<D, B>& grid, std::vector<std::uint64_t>& keys, std::vector<std::uint64_t>& tmp) const {
-    grid.for_each_pair([&](std::uint32_t i, std::uint32_t j) { keys.push_back(pair_key(i, j)); });
-    tmp.resize(keys.size());
-    detail::radix_sort_keys(keys.data(), tmp.data(), keys.size(), 2 * pair_bits_);
-  }
-  int pair_bits_ = 1;  // bits of the largest index
-  std::uint64_t pair_mask_ = 1;
+  detail::PairKeys pk_;                      // contact pairs as keys in canonical order
   std::vector<std::uint64_t> keys_, tkeys_;  // this step's contact pairs, and scratch
   std::optional<HGrid<D, B>> grid_;  // built at the first step, rebuilt at every later one
   std::vector<Vec<D>> fnew_;         // the forces being computed (swapped with f_)
