@@ -335,8 +335,11 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
     return run(o);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
+  } catch (const CLI::ParseError& e) {  // bad input exits 2, as hgrid does
+    std::cerr << "peers: " << e.what() << " (see --help)\n";
+    return 2;
   } catch (const InputError& e) {
     std::cerr << "peers: error: " << e.what() << "\n";
     return 2;
