@@ -5,9 +5,9 @@
 
 #include <random>
 
-#include "hgrid/cell_sizes.hpp"
-#include "hgrid/dpm/simulation.hpp"
-#include "hgrid/generate.hpp"
+#include "model/cell_sizes.hpp"
+#include "dpm/simulation.hpp"
+#include "packing/generate.hpp"
 
 using namespace hgrid;
 

@@ -9,7 +9,7 @@
 #include <fstream>
 #include <string>
 
-#include "hgrid/generate.hpp"
+#include "packing/generate.hpp"
 
 namespace {
 

@@ -9,10 +9,10 @@
 #include <map>
 #include <memory>
 
-#include "hgrid/brute_force.hpp"
-#include "hgrid/cell_sizes.hpp"
-#include "hgrid/generate.hpp"
-#include "hgrid/hgrid.hpp"
+#include "grid/brute_force.hpp"
+#include "model/cell_sizes.hpp"
+#include "packing/generate.hpp"
+#include "grid/hgrid.hpp"
 
 namespace {
 

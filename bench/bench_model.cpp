@@ -2,7 +2,7 @@
 // <= 5 ms; L* search <= 50 ms. Figure data: time `hgrid modelfigs`.
 #include <benchmark/benchmark.h>
 
-#include "hgrid/cell_sizes.hpp"
+#include "model/cell_sizes.hpp"
 
 using namespace hgrid;
 

@@ -18,12 +18,14 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/detail/cgal_pairs.hpp"
-#include "hgrid/dispatch.hpp"
-#include "hgrid/generate.hpp"
-#include "hgrid/hgrid.hpp"
-#include "hgrid/lammps_export.hpp"
-#include "hgrid/lammps_run.hpp"
-#include "hgrid/packing_sizes.hpp"
+#include "grid/dispatch.hpp"
+#include "packing/generate.hpp"
+#include "grid/hgrid.hpp"
+#include "io/lammps_export.hpp"
+#include "bench/lammps_run.hpp"
+#include "packing/packing_sizes.hpp"
+#include "io/provenance.hpp"
+#include "experiment/packing_cache.hpp"
 
 namespace {
 
@@ -193,7 +195,7 @@ int run(Options o) {
     samples_agree = samples_agree && c == pairs["hgrid"];
     samples.push_back(sec);
   };
-  const std::vector<double> sizes = model_sizes(p, SizeRequest{"optimal", {}, 1.0}, Search::top_down, 0.2);
+  const std::vector<double> sizes = model_sizes(p, SizeRequest{CellMethod::optimal, {}, 1.0}, Search::top_down, 0.2);
   const double rmax = *std::max_element(p.radii.begin(), p.radii.end());
   const bool linked = o.linked_cell || (!o.no_linked_cell && p.size() <= 200000);
   dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {

@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "hgrid/brute_force.hpp"
-#include "hgrid/hgrid.hpp"
+#include "grid/brute_force.hpp"
+#include "grid/hgrid.hpp"
 
 namespace hgrid::test {
 

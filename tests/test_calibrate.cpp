@@ -8,10 +8,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "hgrid/calibrate.hpp"
-#include "hgrid/calibration.hpp"
-#include "hgrid/error.hpp"
-#include "hgrid/scene.hpp"
+#include "experiment/calibrate.hpp"
+#include "experiment/calibration.hpp"
+#include "grid/error.hpp"
+#include "experiment/scene.hpp"
 
 namespace hgrid {
 namespace {

@@ -6,9 +6,9 @@
 #include <limits>
 #include <random>
 
-#include "hgrid/cell_sizes.hpp"
-#include "hgrid/detail/model_sizes.hpp"
-#include "hgrid/error.hpp"
+#include "model/cell_sizes.hpp"
+#include "model/detail/model_sizes.hpp"
+#include "grid/error.hpp"
 
 using namespace hgrid;
 

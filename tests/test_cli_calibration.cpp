@@ -10,7 +10,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "hgrid/calibration.hpp"
+#include "experiment/calibration.hpp"
 
 namespace {
 

@@ -6,8 +6,8 @@
 #include <limits>
 #include <numeric>
 
-#include "hgrid/distribution.hpp"
-#include "hgrid/error.hpp"
+#include "model/distribution.hpp"
+#include "grid/error.hpp"
 
 using namespace hgrid;
 

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <random>
 
-#include "hgrid/dpm/simulation.hpp"
-#include "hgrid/error.hpp"
+#include "dpm/simulation.hpp"
+#include "grid/error.hpp"
 
 namespace hgrid::dpm {
 namespace {

@@ -7,11 +7,13 @@
 #include <fstream>
 #include <unistd.h>
 
-#include "hgrid/detail/gen_pairs.hpp"
-#include "hgrid/error.hpp"
-#include "hgrid/generate.hpp"
-#include "hgrid/rcp.hpp"
+#include "packing/detail/gen_pairs.hpp"
+#include "grid/error.hpp"
+#include "packing/generate.hpp"
+#include "packing/rcp.hpp"
 #include "support.hpp"
+#include "io/packing_file.hpp"
+#include "experiment/packing_cache.hpp"
 
 namespace hgrid {
 namespace {

@@ -8,9 +8,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "hgrid/error.hpp"
-#include "hgrid/lammps_export.hpp"
-#include "hgrid/lammps_run.hpp"
+#include "grid/error.hpp"
+#include "io/lammps_export.hpp"
+#include "bench/lammps_run.hpp"
 #include "support.hpp"
 
 namespace hgrid::test {

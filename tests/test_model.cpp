@@ -5,10 +5,10 @@
 #include <cmath>
 #include <limits>
 
-#include "hgrid/cell_sizes.hpp"
-#include "hgrid/detail/model_cost.hpp"
-#include "hgrid/error.hpp"
-#include "hgrid/model.hpp"
+#include "model/cell_sizes.hpp"
+#include "model/detail/model_cost.hpp"
+#include "grid/error.hpp"
+#include "model/model.hpp"
 
 using namespace hgrid;
 

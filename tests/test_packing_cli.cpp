@@ -8,9 +8,11 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "hgrid/error.hpp"
-#include "hgrid/packing.hpp"
+#include "grid/error.hpp"
+#include "packing/packing.hpp"
 #include "support.hpp"
+#include "io/packing_file.hpp"
+#include "io/provenance.hpp"
 
 namespace hgrid::test {
 namespace {

@@ -10,9 +10,9 @@
 #include <map>
 #include <sstream>
 
-#include "hgrid/distribution.hpp"
-#include "hgrid/experiment.hpp"
-#include "hgrid/model.hpp"
+#include "model/distribution.hpp"
+#include "experiment/runner.hpp"
+#include "model/model.hpp"
 
 namespace hgrid {
 namespace {

@@ -4,8 +4,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "hgrid/error.hpp"
-#include "hgrid/scene.hpp"
+#include "grid/error.hpp"
+#include "experiment/scene.hpp"
 
 namespace hgrid {
 namespace {
@@ -37,7 +37,7 @@ TEST(Scene, ExpandsTheProduct) {
   const Scene s = load_scene(write_scene("base", kBase), "default");
   EXPECT_EQ(s.points.size(), 2u * 3 * 2 * 2 * 2);
   EXPECT_EQ(s.name, "t");
-  EXPECT_EQ(s.grid.cells, "optimal");
+  EXPECT_EQ(s.grid.cells, CellMethod::optimal);
   EXPECT_DOUBLE_EQ(s.grid.K, 0.2);
   EXPECT_EQ(s.points[0].packing.d, 3);
   EXPECT_EQ(s.points[0].packing.boundary, Boundary::periodic);

@@ -17,7 +17,7 @@
 #include <span>
 #include <vector>
 
-#include "hgrid/geometry.hpp"
+#include "grid/geometry.hpp"
 
 namespace hgrid::bench {
 

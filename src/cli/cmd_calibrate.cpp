@@ -10,8 +10,8 @@
 #include <stdexcept>
 
 #include "cli/common.hpp"
-#include "hgrid/calibrate.hpp"
-#include "hgrid/error.hpp"
+#include "experiment/calibrate.hpp"
+#include "grid/error.hpp"
 
 namespace hgrid::cli {
 namespace {

@@ -5,9 +5,11 @@
 #include <memory>
 
 #include "cli/common.hpp"
-#include "hgrid/error.hpp"
-#include "hgrid/generate.hpp"
-#include "hgrid/lammps_export.hpp"
+#include "grid/error.hpp"
+#include "packing/generate.hpp"
+#include "io/lammps_export.hpp"
+#include "io/packing_file.hpp"
+#include "experiment/packing_cache.hpp"
 
 namespace hgrid::cli {
 namespace {

@@ -4,8 +4,10 @@
 #include <memory>
 
 #include "cli/common.hpp"
-#include "hgrid/error.hpp"
-#include "hgrid/generate.hpp"
+#include "grid/error.hpp"
+#include "packing/generate.hpp"
+#include "io/packing_file.hpp"
+#include "experiment/packing_cache.hpp"
 
 namespace hgrid::cli {
 

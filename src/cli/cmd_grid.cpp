@@ -8,25 +8,20 @@
 #include <string>
 
 #include "cli/common.hpp"
-#include "hgrid/packing_sizes.hpp"
-#include "hgrid/brute_force.hpp"
-#include "hgrid/calibration.hpp"
-#include "hgrid/dispatch.hpp"
-#include "hgrid/hgrid.hpp"
-#include "hgrid/packing.hpp"
-#include "hgrid/timing.hpp"
+#include "packing/packing_sizes.hpp"
+#include "grid/brute_force.hpp"
+#include "experiment/calibration.hpp"
+#include "grid/dispatch.hpp"
+#include "grid/hgrid.hpp"
+#include "packing/packing.hpp"
+#include "experiment/timing.hpp"
+#include "io/packing_file.hpp"
 
 namespace hgrid::cli {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-Search parse_search(const std::string& s) {
-  if (s == "topdown") return Search::top_down;
-  if (s == "bottomup") return Search::bottom_up;
-  throw InputError("search", "must be 'topdown' or 'bottomup' (got '" + s + "')");
-}
 
 /// Buffered "i j\n" writer for large pair lists.
 class PairWriter {
@@ -55,13 +50,14 @@ struct GridOptions {
   std::string file;
   std::string sizes;
   std::string search = "topdown";
+  std::string cells;  // a cell-size method, parsed in resolve()
   SizeRequest request;
 };
 
 void add_grid_options(CLI::App* sub, GridOptions& o) {
   sub->add_option("FILE", o.file, "packing file (.h5 or .csv)")->required();
   auto* sizes = sub->add_option("--sizes", o.sizes, "cell sizes s1,s2,...,sL (increasing, same unit as the radii)");
-  auto* cells = sub->add_option("--cells", o.request.method,
+  auto* cells = sub->add_option("--cells", o.cells,
                                 "choose the sizes with the cost model: linear|exponential|constant|optimal");
   sizes->excludes(cells);
   sub->add_option("--levels", o.request.levels, "with --cells: number of levels L (default: the best L*)");
@@ -75,8 +71,10 @@ GridParams resolve(const GridOptions& o, const Packing& p, double K) {
   g.search = parse_search(o.search);
   if (!o.sizes.empty()) {
     g.sizes = parse_list(o.sizes, "sizes");
-  } else if (!o.request.method.empty()) {
-    g.sizes = model_sizes(p, o.request, g.search, K);
+  } else if (!o.cells.empty()) {
+    SizeRequest r = o.request;
+    r.method = parse_cell_method(o.cells);
+    g.sizes = model_sizes(p, r, g.search, K);
   } else {
     throw InputError("sizes", "give --sizes s1,...,sL or --cells METHOD");
   }

@@ -5,9 +5,10 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/common.hpp"
-#include "hgrid/error.hpp"
-#include "hgrid/generate.hpp"
-#include "hgrid/rcp.hpp"
+#include "grid/error.hpp"
+#include "packing/generate.hpp"
+#include "packing/rcp.hpp"
+#include "io/packing_file.hpp"
 
 namespace hgrid::cli {
 namespace {

@@ -8,11 +8,12 @@
 #include <sstream>
 
 #include "cli/common.hpp"
-#include "hgrid/calibration.hpp"
-#include "hgrid/cell_sizes.hpp"
-#include "hgrid/detail/model_figs.hpp"
-#include "hgrid/error.hpp"
-#include "hgrid/packing.hpp"
+#include "experiment/calibration.hpp"
+#include "model/cell_sizes.hpp"
+#include "model/figures.hpp"
+#include "grid/error.hpp"
+#include "packing/packing.hpp"
+#include "io/packing_file.hpp"
 
 namespace hgrid::cli {
 
@@ -56,12 +57,6 @@ std::unique_ptr<Distribution> make_distribution(const ModelOptions& o) {
   if (o.dist == "powerlaw") return std::make_unique<PowerLaw>(o.alpha, o.omega);
   if (o.dist == "lognormal") return std::make_unique<LogNormal>(LogNormal::centred(o.sigma, o.omega));
   throw InputError("dist", "must be powerlaw or lognormal (got '" + o.dist + "')");
-}
-
-Search parse_search(const std::string& s) {
-  if (s == "topdown") return Search::top_down;
-  if (s == "bottomup") return Search::bottom_up;
-  throw InputError("search", "must be topdown or bottomup (got '" + s + "')");
 }
 
 void run_model(const ModelOptions& o) {

@@ -1,14 +1,12 @@
 // hgrid run: one scene file -> results/<name>.h5 and .csv.
 #include <iostream>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <thread>
 
 #include "cli/common.hpp"
-#include "hgrid/detail/result_io.hpp"
-#include "hgrid/dpm/dpm_scene.hpp"
-#include "hgrid/error.hpp"
-#include "hgrid/experiment.hpp"
+#include "experiment/dpm_scene.hpp"
+#include "grid/error.hpp"
+#include "experiment/runner.hpp"
 
 namespace hgrid::cli {
 namespace {
@@ -31,13 +29,7 @@ void run(const RunArgs& a) {
   const auto results = run_scene(scene, a.opt);
   std::cerr << "hgrid run: wrote " << result_stem(scene, a.opt) << ".h5 and .csv\n";
   if (!a.json) return;
-  nlohmann::json out;
-  out["scene"] = scene.name;
-  out["scale"] = scene.scale;
-  out["results"] = result_stem(scene, a.opt) + ".h5";
-  out["points"] = nlohmann::json::array();
-  for (const auto& r : results) out["points"].push_back(detail::result_to_json(r));
-  std::cout << out.dump(2) << "\n";
+  std::cout << results_json(scene, results, a.opt) << "\n";
 }
 
 }  // namespace

@@ -5,7 +5,8 @@
 #include <sstream>
 
 #include "cli/common.hpp"
-#include "hgrid/error.hpp"
+#include "grid/error.hpp"
+#include "io/provenance.hpp"
 
 namespace hgrid::cli {
 
@@ -34,6 +35,8 @@ std::vector<double> parse_list(const std::string& text, const std::string& field
 int main(int argc, char** argv) {
   CLI::App app{"hgrid: hierarchical-grid contact detection, counted, and its cost model\n"
                "(Krijgsman, Ogarko & Luding, Comp. Part. Mech. 1 (2014) 357-372)"};
+  app.set_version_flag("--version", std::string("hgrid ") + hgrid::version() + " (" + hgrid::git_hash() + ", " +
+                                        hgrid::compiler_id() + ")");
   app.require_subcommand(1);
   app.fallthrough(false);
   hgrid::cli::register_grid_commands(app);
@@ -47,6 +50,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     std::cerr << "hgrid: " << e.what() << " (see --help)\n";

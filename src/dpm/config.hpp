@@ -1,0 +1,41 @@
+// What a DPM run simulates: box, boundary, contact law, time step and the
+// physical effects a scene switches on. Validated before anything runs.
+#pragma once
+#include <array>
+#include <vector>
+
+#include "grid/geometry.hpp"
+#include "grid/params.hpp"
+
+namespace hgrid::dpm {
+
+/// dt must resolve a contact with at least this many steps (dt <= t_c / 10);
+/// Luding's DEM notes recommend about 50 for accuracy, 10 is the stability floor.
+inline constexpr double kMinStepsPerContact = 10.0;
+
+struct DpmConfig {
+  int d = 2;
+  Boundary boundary = Boundary::walls;
+  std::array<double, 3> box{};  // first d entries used; walls at 0 and box[k]
+  // Linear spring-dashpot normal contact: every pair (and particle-wall
+  // contact) lasts t_c and has normal restitution e (stiffness and damping
+  // scale with the reduced mass; Luding, "Introduction to DEM", Sect. 2).
+  double contact_time = 1.0;  // t_c
+  double restitution = 0.8;   // e in (0, 1]
+  double dt = 0.02;           // time step, <= t_c / kMinStepsPerContact
+  // Optional effects (compiled in only when switched on).
+  bool friction = false;
+  double mu = 0.5;                // Coulomb coefficient
+  double friction_damping = 1.0;  // tangential viscosity gamma_t = friction_damping * m_red / t_c
+  bool gravity = false;
+  std::array<double, 3> g{};
+  double density = 1.0;  // mass = density * volume (disk area in 2D)
+  // Contact detection.
+  std::vector<double> sizes;  // HGrid cell sizes
+  Search search = Search::top_down;
+};
+
+/// Throws InputError naming the field (the scene key) and the allowed range.
+void validate(const DpmConfig& c);
+
+}  // namespace hgrid::dpm

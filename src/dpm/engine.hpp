@@ -1,0 +1,333 @@
+// The time loop of one composition of effects: velocity Verlet (half kick,
+// drift, forces, half kick), contacts from an HGrid rebuilt every step.
+//
+// Why rebuilt: hgrid::HGrid is an immutable value type laid out by a counting
+// sort; a rebuild is O(N) with a small constant (about one query's cost for
+// the linked cell at this density), needs no skin or displacement bookkeeping,
+// and keeps the contact set exact at every step. One grid is kept and
+// rebuilt in place (HGrid::rebuild), and the force buffers are kept too, so
+// that a step allocates nothing: with fresh arrays every step, glibc's
+// malloc handed memory back to the kernel and took it again, and the page
+// faults cost more than the step's work on some machines.
+//
+// Velocity-dependent forces (dashpot, friction) use the predicted velocity
+// v_n + dt a_n (second order), so the restitution of a resolved contact
+// converges as dt^2.
+//
+// Contacts are handled in canonical order, (i, j) ascending, not in the
+// order the grid finds them: a particle's forces are summed in an order that
+// does not depend on the cell sizes, the number of levels, the search
+// direction or the grid's internals, so the trajectory is a property of the
+// scene alone (the optimal grid and the linked cell run the same simulation,
+// bit for bit). The sort is an LSD radix sort of the packed pair keys, timed
+// with the forces, not with the contact detection.
+#pragma once
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "grid/pair_keys.hpp"
+#include "dpm/contact_law.hpp"
+#include "dpm/simulation.hpp"
+#include "grid/hgrid.hpp"
+
+namespace hgrid::dpm {
+
+template <int D>
+using Vec = std::array<double, D>;
+
+/// Angular velocity: a scalar (z) in 2D, a vector in 3D.
+template <int D>
+using Spin = std::array<double, D == 2 ? 1 : 3>;
+
+template <int D>
+inline Spin<D> cross_rn(const Vec<D>& n, const Vec<D>& f) {  // n x f
+  if constexpr (D == 2) return {n[0] * f[1] - n[1] * f[0]};
+  else return {n[1] * f[2] - n[2] * f[1], n[2] * f[0] - n[0] * f[2], n[0] * f[1] - n[1] * f[0]};
+}
+template <int D>
+inline Vec<D> cross_wn(const Spin<D>& w, const Vec<D>& n) {  // w x n
+  if constexpr (D == 2) return {-w[0] * n[1], w[0] * n[0]};
+  else return {w[1] * n[2] - w[2] * n[1], w[2] * n[0] - w[0] * n[2], w[0] * n[1] - w[1] * n[0]};
+}
+
+template <int D, Boundary B, bool Friction, bool Gravity>
+class Engine final : public Simulation {
+  using Clock = std::chrono::steady_clock;
+
+ public:
+  Engine(const DpmConfig& c, const Packing& p, const std::vector<double>& vel)
+      : c_(c), law_(SpringDashpot::from(c.contact_time, c.restitution)), s_(p.spheres<D>()), pk_(s_.size()) {
+    for (int k = 0; k < D; ++k) box_[k] = c.box[k];
+    const std::size_t n = s_.size();
+    v_.assign(n, Vec<D>{});
+    f_.assign(n, Vec<D>{});
+    m_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (int k = 0; k < D; ++k) v_[i][k] = vel.empty() ? 0.0 : vel[i * D + k];
+      const double r = s_[i].r;
+      m_[i] = c.density * (D == 2 ? M_PI * r * r : 4.0 / 3.0 * M_PI * r * r * r);
+    }
+    if constexpr (Friction) {
+      w_.assign(n, Spin<D>{});
+      tq_.assign(n, Spin<D>{});
+      inv_I_.resize(n);
+      for (std::size_t i = 0; i < n; ++i)
+        inv_I_[i] = 1.0 / ((D == 2 ? 0.5 : 0.4) * m_[i] * s_[i].r * s_[i].r);
+    }
+    grid_params_.sizes = c.sizes;
+    grid_params_.search = c.search;
+    compute_forces();
+  }
+
+  void run(std::uint64_t steps) override {
+    const double dt = c_.dt, h = 0.5 * dt;
+    for (std::uint64_t n = 0; n < steps; ++n) {
+      auto t0 = Clock::now();
+      for (std::size_t i = 0; i < s_.size(); ++i) {
+        const double im = 1.0 / m_[i];
+        for (int k = 0; k < D; ++k) {
+          v_[i][k] += h * f_[i][k] * im;
+          double x = s_[i].x[k] + dt * v_[i][k];
+          if constexpr (B == Boundary::periodic) x = detail::wrap(x, box_[k]);
+          s_[i].x[k] = x;
+        }
+        if constexpr (Friction)
+          for (std::size_t k = 0; k < w_[i].size(); ++k) w_[i][k] += h * tq_[i][k] * inv_I_[i];
+      }
+      stats_.seconds_integration += seconds_since(t0);
+      time_ += dt;
+      compute_forces();
+      t0 = Clock::now();
+      for (std::size_t i = 0; i < s_.size(); ++i) {
+        const double im = 1.0 / m_[i];
+        for (int k = 0; k < D; ++k) v_[i][k] += h * f_[i][k] * im;
+        if constexpr (Friction)
+          for (std::size_t k = 0; k < w_[i].size(); ++k) w_[i][k] += h * tq_[i][k] * inv_I_[i];
+      }
+      stats_.seconds_integration += seconds_since(t0);
+      ++stats_.steps;
+    }
+  }
+
+  double time() const override { return time_; }
+
+  double kinetic_energy() const override {
+    double e = 0;
+    for (std::size_t i = 0; i < s_.size(); ++i) {
+      double v2 = 0;
+      for (int k = 0; k < D; ++k) v2 += v_[i][k] * v_[i][k];
+      e += 0.5 * m_[i] * v2;
+      if constexpr (Friction) {
+        double w2 = 0;
+        for (double w : w_[i]) w2 += w * w;
+        e += 0.5 * w2 / inv_I_[i];
+      }
+    }
+    return e;
+  }
+
+  double elastic_energy() const override {
+    double e = 0;
+    const HGrid<D, B> grid(s_, box_, grid_params_);
+    std::vector<std::uint64_t> keys, tmp;
+    grid.for_each_pair([&](std::uint32_t i, std::uint32_t j) { keys.push_back(pk_.key(i, j)); });
+    pk_.sort(keys, tmp);
+    for (const std::uint64_t key : keys) {
+      const std::uint32_t i = pk_.first(key), j = pk_.second(key);
+      const double dist = std::sqrt(detail::dist2<D, B>(s_[i].x, s_[j].x, box_));
+      e += law_.energy(m_[i] * m_[j] / (m_[i] + m_[j]), s_[i].r + s_[j].r - dist);
+    }
+    if constexpr (B == Boundary::walls)
+      for (std::size_t i = 0; i < s_.size(); ++i)
+        for (int k = 0; k < D; ++k) {
+          const double lo = s_[i].r - s_[i].x[k], hi = s_[i].x[k] + s_[i].r - box_[k];
+          if (lo > 0) e += law_.energy(m_[i], lo);
+          if (hi > 0) e += law_.energy(m_[i], hi);
+        }
+    return e;
+  }
+
+  std::array<double, 3> momentum() const override {
+    std::array<double, 3> p{};
+    for (std::size_t i = 0; i < s_.size(); ++i)
+      for (int k = 0; k < D; ++k) p[k] += m_[i] * v_[i][k];
+    return p;
+  }
+  std::vector<double> positions() const override {
+    std::vector<double> out(s_.size() * D);
+    for (std::size_t i = 0; i < s_.size(); ++i)
+      for (int k = 0; k < D; ++k) out[i * D + k] = s_[i].x[k];
+    return out;
+  }
+  std::vector<double> velocities() const override {
+    std::vector<double> out(s_.size() * D);
+    for (std::size_t i = 0; i < s_.size(); ++i)
+      for (int k = 0; k < D; ++k) out[i * D + k] = v_[i][k];
+    return out;
+  }
+  const StepStats& stats() const override { return stats_; }
+
+ private:
+  static double seconds_since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+  }
+
+  /// Predicted end-of-step velocity v_n + dt a_n (v_ holds v_{n+1/2} here).
+  Vec<D> vpred(std::size_t i) const {
+    Vec<D> v;
+    const double h = 0.5 * c_.dt / m_[i];
+    for (int k = 0; k < D; ++k) v[k] = v_[i][k] + h * f_[i][k];
+    return v;
+  }
+  Spin<D> wpred(std::size_t i) const {
+    Spin<D> w = w_[i];
+    for (std::size_t k = 0; k < w.size(); ++k) w[k] += 0.5 * c_.dt * tq_[i][k] * inv_I_[i];
+    return w;
+  }
+
+  /// Tangential force on the particle whose contact point sees the partner
+  /// move with relative velocity vrel, normal n, normal force fn >= 0:
+  /// viscous, capped by Coulomb's mu * fn.
+  Vec<D> tangential(const Vec<D>& vrel, const Vec<D>& n, double m, double fn) {
+    ++stats_.friction_evaluations;
+    double vn = 0;
+    for (int k = 0; k < D; ++k) vn += vrel[k] * n[k];
+    Vec<D> vt;
+    double vt2 = 0;
+    for (int k = 0; k < D; ++k) {
+      vt[k] = vrel[k] - vn * n[k];
+      vt2 += vt[k] * vt[k];
+    }
+    const double visc = c_.friction_damping * m / c_.contact_time;
+    const double vtn = std::sqrt(vt2), cap = c_.mu * fn;
+    const double scale = visc * vtn > cap && vtn > 0 ? cap / vtn : visc;
+    for (int k = 0; k < D; ++k) vt[k] *= scale;
+    return vt;
+  }
+
+  void compute_forces() {
+    auto t0 = Clock::now();
+    if (grid_) grid_->rebuild(s_);
+    else grid_.emplace(s_, box_, grid_params_);
+    const auto t_built = Clock::now();
+    keys_.clear();
+    grid_->for_each_pair([&](std::uint32_t i, std::uint32_t j) { keys_.push_back(pk_.key(i, j)); });
+    stats_.seconds_grid_build += std::chrono::duration<double>(t_built - t0).count();
+    stats_.seconds_query += seconds_since(t_built);
+    stats_.seconds_contact_detection += seconds_since(t0);
+
+    t0 = Clock::now();
+    pk_.sort(keys_, tkeys_);
+    const std::size_t n = s_.size();
+    std::vector<Vec<D>>& fnew = fnew_;
+    fnew.assign(n, Vec<D>{});  // keeps its capacity: f_ and fnew_ swap every step
+    if constexpr (Friction) tq_.assign(n, Spin<D>{});
+    if constexpr (Gravity) {
+      for (std::size_t i = 0; i < n; ++i)
+        for (int k = 0; k < D; ++k) fnew[i][k] = m_[i] * c_.g[k];
+      stats_.gravity_evaluations += n;
+    }
+    for (const std::uint64_t key : keys_) {
+      const std::uint32_t i = pk_.first(key), j = pk_.second(key);
+      Vec<D> d;
+      double d2 = 0;
+      for (int k = 0; k < D; ++k) {
+        d[k] = s_[j].x[k] - s_[i].x[k];
+        if constexpr (B == Boundary::periodic) d[k] = detail::min_image(d[k], box_[k]);
+        d2 += d[k] * d[k];
+      }
+      const double dist = std::sqrt(d2);
+      Vec<D> nrm;
+      for (int k = 0; k < D; ++k) nrm[k] = d[k] / dist;
+      const Vec<D> vi = vpred(i), vj = vpred(j);
+      Vec<D> vrel;
+      double rate = 0;  // d(overlap)/dt = -(vj - vi).n
+      for (int k = 0; k < D; ++k) {
+        vrel[k] = vj[k] - vi[k];
+        rate -= vrel[k] * nrm[k];
+      }
+      const double m = m_[i] * m_[j] / (m_[i] + m_[j]);
+      const double fn = law_.force(m, s_[i].r + s_[j].r - dist, rate);
+      for (int k = 0; k < D; ++k) {
+        fnew[i][k] -= fn * nrm[k];
+        fnew[j][k] += fn * nrm[k];
+      }
+      if constexpr (Friction) {
+        const Spin<D> wi = wpred(i), wj = wpred(j);
+        Spin<D> ws;
+        for (std::size_t k = 0; k < ws.size(); ++k) ws[k] = s_[i].r * wi[k] + s_[j].r * wj[k];
+        const Vec<D> rot = cross_wn<D>(ws, nrm);
+        for (int k = 0; k < D; ++k) vrel[k] -= rot[k];
+        const Vec<D> ft = tangential(vrel, nrm, m, std::max(fn, 0.0));  // on i
+        const Spin<D> arm = cross_rn<D>(nrm, ft);
+        for (int k = 0; k < D; ++k) {
+          fnew[i][k] += ft[k];
+          fnew[j][k] -= ft[k];
+        }
+        for (std::size_t k = 0; k < arm.size(); ++k) {
+          tq_[i][k] += s_[i].r * arm[k];
+          tq_[j][k] += s_[j].r * arm[k];
+        }
+      }
+    }
+    stats_.pair_contacts += keys_.size();
+    if constexpr (B == Boundary::walls) wall_forces(fnew);
+    f_.swap(fnew);
+    stats_.seconds_forces += seconds_since(t0);
+  }
+
+  void wall_forces(std::vector<Vec<D>>& f) {
+    for (std::size_t i = 0; i < s_.size(); ++i) {
+      for (int k = 0; k < D; ++k) {
+        const double x = s_[i].x[k], r = s_[i].r;
+        if (x < 0.0 || x > box_[k])
+          throw std::runtime_error("dpm: particle " + std::to_string(i) + " left the walled box at t = " +
+                                   std::to_string(time_) + " (time step too large for the velocities?)");
+        for (int side = 0; side < 2; ++side) {
+          const double overlap = side == 0 ? r - x : x + r - box_[k];
+          if (overlap <= 0) continue;
+          ++stats_.wall_contacts;
+          Vec<D> nrm{};  // from the particle towards the wall
+          nrm[k] = side == 0 ? -1.0 : 1.0;
+          const Vec<D> v = vpred(i);
+          const double fn = law_.force(m_[i], overlap, v[k] * nrm[k]);
+          f[i][k] -= fn * nrm[k];
+          if constexpr (Friction) {
+            // The wall is at rest; its contact point sees the particle's contact point move.
+            Vec<D> vrel;
+            const Vec<D> rot = cross_wn<D>(wpred(i), nrm);
+            for (int a = 0; a < D; ++a) vrel[a] = -(v[a] + r * rot[a]);
+            const Vec<D> ft = tangential(vrel, nrm, m_[i], std::max(fn, 0.0));
+            const Spin<D> arm = cross_rn<D>(nrm, ft);
+            for (int a = 0; a < D; ++a) f[i][a] += ft[a];
+            for (std::size_t a = 0; a < arm.size(); ++a) tq_[i][a] += r * arm[a];
+          }
+        }
+      }
+    }
+  }
+
+  DpmConfig c_;
+  SpringDashpot law_;
+  Extent<D> box_{};
+  GridParams grid_params_;
+  std::vector<Sphere<D>> s_;
+  std::vector<Vec<D>> v_, f_;
+  std::vector<double> m_;
+  std::vector<Spin<D>> w_, tq_;  // only with friction
+  std::vector<double> inv_I_;
+  detail::PairKeys pk_;                      // contact pairs as keys in canonical order
+  std::vector<std::uint64_t> keys_, tkeys_;  // this step's contact pairs, and scratch
+  std::optional<HGrid<D, B>> grid_;  // built at the first step, rebuilt at every later one
+  std::vector<Vec<D>> fnew_;         // the forces being computed (swapped with f_)
+  StepStats stats_;
+  double time_ = 0;
+};
+
+}  // namespace hgrid::dpm

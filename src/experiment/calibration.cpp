@@ -1,0 +1,149 @@
+#include "experiment/calibration.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <unistd.h>
+
+#include "grid/error.hpp"
+
+namespace hgrid {
+namespace {
+
+constexpr const char* kFormat = "hgridlab-calibration-1";
+
+const char* env(const char* name) {
+  const char* v = std::getenv(name);
+  return v && *v ? v : nullptr;
+}
+
+// The numeric fields of the record, in file order.
+struct NumField {
+  const char* key;
+  double Calibration::*member;
+};
+constexpr NumField kNumbers[] = {
+    {"K", &Calibration::K},           {"K_err", &Calibration::K_err},
+    {"c_cell", &Calibration::c_cell}, {"c_cell_err", &Calibration::c_cell_err},
+    {"c_test", &Calibration::c_test}, {"c_test_err", &Calibration::c_test_err},
+    {"c0", &Calibration::c0},         {"c0_err", &Calibration::c0_err},
+    {"cov_cell_test", &Calibration::cov_cell_test}, {"r2", &Calibration::r2},
+    {"rms_rel_residual", &Calibration::rms_rel_residual},
+};
+
+}  // namespace
+
+std::string calibration_path() {
+  if (const char* p = env("HGRID_CALIBRATION")) return p;
+  std::filesystem::path base;
+  if (const char* x = env("XDG_CONFIG_HOME")) base = x;
+  else if (const char* h = env("HOME")) base = std::filesystem::path(h) / ".config";
+  else base = ".config";
+  return (base / "hgridlab" / "calibration.json").string();
+}
+
+void save_calibration(const Calibration& c, const std::string& path) {
+  nlohmann::ordered_json j;
+  j["format"] = kFormat;
+  for (const auto& f : kNumbers) j[f.key] = c.*(f.member);
+  j["points"] = c.points;
+  j["units"] = "c0: seconds per particle, c_cell: seconds per cell access, c_test: seconds per narrow-phase check";
+  j["model"] = "query wall time W = c0 N + c_cell A + c_test C; K = c_cell / c_test";
+  j["machine"] = c.machine;
+  j["date"] = c.date;
+  j["git_hash"] = c.git_hash;
+  j["compiler"] = c.compiler;
+  j["preset"] = c.preset;
+  const std::filesystem::path target(path);
+  if (target.has_parent_path()) std::filesystem::create_directories(target.parent_path());
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  {
+    std::ofstream out(tmp);
+    out << j.dump(2) << "\n";
+    out.close();
+    if (!out) {
+      std::filesystem::remove(tmp);
+      throw InputError("calibration", "cannot write '" + tmp + "'");
+    }
+  }
+  std::filesystem::rename(tmp, target);
+}
+
+Calibration load_calibration(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError("calibration", "no calibration file at '" + path + "'");
+  std::stringstream buf;
+  buf << in.rdbuf();
+  const auto bad = [&](const std::string& why) {
+    return InputError("calibration", "'" + path + "' is not a valid calibration file (" + why + ")");
+  };
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(buf.str());
+  } catch (const nlohmann::json::parse_error& e) {
+    throw bad(std::string("invalid JSON: ") + e.what());
+  }
+  if (!j.is_object()) throw bad("not a JSON object");
+  if (j.value("format", std::string()) != kFormat) throw bad(std::string("'format' is not '") + kFormat + "'");
+  Calibration c;
+  for (const auto& f : kNumbers) {
+    if (!j.contains(f.key) || !j[f.key].is_number()) throw bad(std::string("'") + f.key + "' missing or not a number");
+    c.*(f.member) = j[f.key].get<double>();
+  }
+  if (!(std::isfinite(c.K) && c.K > 0)) throw bad("'K' must be finite and > 0");
+  if (!(std::isfinite(c.K_err) && c.K_err >= 0)) throw bad("'K_err' must be finite and >= 0");
+  const auto text = [&](const char* key) {
+    return j.contains(key) && j[key].is_string() ? j[key].get<std::string>() : std::string();
+  };
+  c.points = j.contains("points") && j["points"].is_number_integer() ? j["points"].get<int>() : 0;
+  c.machine = text("machine");
+  c.date = text("date");
+  c.git_hash = text("git_hash");
+  c.compiler = text("compiler");
+  c.preset = text("preset");
+  return c;
+}
+
+double calibrated_K(const std::string& field) {
+  const std::string path = calibration_path();
+  try {
+    return load_calibration(path).K;
+  } catch (const InputError& e) {
+    const std::string why = std::string(e.what()).substr(std::string("calibration: ").size());
+    throw InputError(field, "'auto' means the K measured on this machine, but " + why +
+                                "; run `hgrid calibrate` first (it writes " + path +
+                                "; HGRID_CALIBRATION overrides the path)");
+  }
+}
+
+double resolve_K(const std::string& text, const std::string& field) {
+  if (text == "auto") return calibrated_K(field);
+  std::size_t used = 0;
+  double K = 0;
+  try {
+    K = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size())
+    throw InputError(field, "must be a number >= 0 or 'auto' (got '" + text + "')");
+  if (!(std::isfinite(K) && K >= 0)) throw InputError(field, "must be finite and >= 0 (got '" + text + "')");
+  return K;
+}
+
+std::string machine_description() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("model name", 0) != 0) continue;
+    const auto colon = line.find(':');
+    if (colon == std::string::npos) break;
+    const auto first = line.find_first_not_of(" \t", colon + 1);
+    if (first != std::string::npos) return line.substr(first);
+  }
+  return "unknown";
+}
+
+}  // namespace hgrid

@@ -1,0 +1,208 @@
+#include "experiment/detail/results.hpp"
+
+#include <cmath>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include "io/h5.hpp"
+#include "packing/packing.hpp"
+#include "io/provenance.hpp"
+
+namespace hgrid::detail {
+namespace {
+
+const char* placement_name(Placement p) { return p == Placement::random ? "random" : "excluded"; }
+
+/// JSON has no NaN: unrecorded values travel as null.
+nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+double num(const nlohmann::json& j) { return j.is_null() ? std::nan("") : j.get<double>(); }
+
+std::string utc_now() {
+  std::time_t t = std::time(nullptr);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+  return buf;
+}
+
+}  // namespace
+
+nlohmann::json result_to_json(const PointResult& r) {
+  const PackingSpec& s = r.point.packing;
+  const Counters& c = r.counts;
+  return {{"d", s.d},
+          {"n", r.n},
+          {"nu", s.nu},
+          {"nu_achieved", r.nu_achieved},
+          {"dist", s.dist},
+          {"alpha", s.alpha},
+          {"omega", s.omega},
+          {"sigma", s.sigma},
+          {"boundary", to_string(s.boundary)},
+          {"placement", placement_name(s.placement)},
+          {"seed", s.seed},
+          {"equilibrate", s.equilibrate},
+          {"search", to_string(r.point.search)},
+          {"levels", c.levels},
+          {"sizes", r.sizes},
+          {"cell_accesses", c.cell_accesses},
+          {"narrow_phase_checks", c.narrow_phase_checks},
+          {"contacts", c.contacts},
+          {"particles_per_level", c.particles_per_level},
+          {"accesses_by_level", c.accesses_by_level},
+          {"checks_by_level", c.checks_by_level},
+          {"T_over_N", r.T_over_N},
+          {"T_cd_over_N", r.T_cd_over_N},
+          {"T_ca_over_N", r.T_ca_over_N},
+          {"model_T_over_N", num(r.model_T_over_N)},
+          {"model_T_cd_over_N", num(r.model_T_cd_over_N)},
+          {"model_T_ca_over_N", num(r.model_T_ca_over_N)},
+          {"share_multi_lowest", num(r.share_multi_lowest)},
+          {"seconds_packing", r.seconds_packing},
+          {"seconds_sizes", r.seconds_sizes},
+          {"seconds_build", r.seconds_build},
+          {"seconds_query", r.seconds_query}};
+}
+
+PointResult result_from_json(const nlohmann::json& j) {
+  PointResult r;
+  PackingSpec& s = r.point.packing;
+  s.d = j.at("d");
+  s.n = j.at("n");
+  s.nu = j.at("nu");
+  s.dist = j.at("dist");
+  s.alpha = j.at("alpha");
+  s.omega = j.at("omega");
+  s.sigma = j.at("sigma");
+  s.boundary = parse_boundary(j.at("boundary").get<std::string>());
+  s.placement = j.at("placement") == "random" ? Placement::random : Placement::excluded;
+  s.seed = j.at("seed");
+  s.equilibrate = j.at("equilibrate");
+  r.point.search = parse_search(j.at("search").get<std::string>());
+  r.n = j.at("n");
+  r.nu_achieved = j.at("nu_achieved");
+  r.sizes = j.at("sizes").get<std::vector<double>>();
+  Counters& c = r.counts;
+  c.levels = j.at("levels");
+  c.cell_accesses = j.at("cell_accesses");
+  c.narrow_phase_checks = j.at("narrow_phase_checks");
+  c.contacts = j.at("contacts");
+  c.particles_per_level = j.at("particles_per_level").get<std::vector<std::uint64_t>>();
+  c.accesses_by_level = j.at("accesses_by_level").get<std::vector<std::uint64_t>>();
+  c.checks_by_level = j.at("checks_by_level").get<std::vector<std::uint64_t>>();
+  r.T_over_N = j.at("T_over_N");
+  r.T_cd_over_N = j.at("T_cd_over_N");
+  r.T_ca_over_N = j.at("T_ca_over_N");
+  r.model_T_over_N = num(j.at("model_T_over_N"));
+  r.model_T_cd_over_N = num(j.at("model_T_cd_over_N"));
+  r.model_T_ca_over_N = num(j.at("model_T_ca_over_N"));
+  r.share_multi_lowest = num(j.at("share_multi_lowest"));
+  r.seconds_packing = j.at("seconds_packing");
+  r.seconds_sizes = j.at("seconds_sizes");
+  r.seconds_build = j.at("seconds_build");
+  r.seconds_query = j.at("seconds_query");
+  return r;
+}
+
+namespace {
+
+/// Columns of the CSV summary (also the 1-D datasets of the HDF5 file).
+const char* const kNumericColumns[] = {"d", "n", "nu", "nu_achieved", "alpha", "omega", "sigma", "seed", "levels",
+                                       "cell_accesses", "narrow_phase_checks", "contacts", "T_over_N", "T_cd_over_N",
+                                       "T_ca_over_N", "model_T_over_N", "model_T_cd_over_N", "model_T_ca_over_N",
+                                       "share_multi_lowest", "seconds_packing", "seconds_sizes", "seconds_build",
+                                       "seconds_query"};
+const char* const kTextColumns[] = {"dist", "boundary", "placement", "search"};
+
+void write_csv(const std::string& path, const Scene& scene, const std::vector<nlohmann::json>& rows) {
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  {
+    std::ofstream out(tmp);
+    out << "# scene=" << scene.name << " scale=" << scene.scale << " git_hash=" << git_hash() << "\n";
+    std::string header;
+    for (const char* c : kTextColumns) header += std::string(header.empty() ? "" : ",") + c;
+    for (const char* c : kNumericColumns) header += std::string(",") + c;
+    out << header << ",sizes\n";
+    out.precision(17);
+    for (const auto& j : rows) {
+      std::string line;
+      for (const char* c : kTextColumns) {  // appended piece by piece: GCC 12 warns (-Wrestrict) on "," + string
+        if (!line.empty()) line += ',';
+        line += j.at(c).get<std::string>();
+      }
+      out << line;
+      for (const char* c : kNumericColumns) {
+        out << ",";
+        if (j.at(c).is_null()) out << "NaN";
+        else out << j.at(c).get<double>();
+      }
+      out << ",";
+      bool first = true;
+      for (double s : j.at("sizes")) out << (first ? "" : ";") << s, first = false;
+      out << "\n";
+    }
+    if (!out) throw std::runtime_error("cannot write " + tmp);
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+}  // namespace
+
+void write_results(const std::string& stem, const Scene& scene, const std::vector<PointResult>& results) {
+  std::vector<nlohmann::json> rows;
+  std::size_t lmax = 0;
+  for (const auto& r : results) {
+    rows.push_back(result_to_json(r));
+    lmax = std::max<std::size_t>(lmax, r.counts.levels);
+  }
+  const hsize_t P = rows.size(), L = lmax;
+  h5_write_file(stem + ".h5", [&](hid_t f) {
+    for (const char* c : kNumericColumns) {
+      std::vector<double> v;
+      for (const auto& j : rows) v.push_back(j.at(c).is_null() ? std::nan("") : j.at(c).get<double>());
+      h5_write_dataset(f, c, v, {P});
+    }
+    for (const char* c : kTextColumns) {
+      std::vector<std::string> v;
+      for (const auto& j : rows) v.push_back(j.at(c));
+      h5_write_strings(f, c, v);
+    }
+    // Per level (padded: NaN sizes, zero counts beyond a point's own L).
+    std::vector<double> sizes(P * L, std::nan(""));
+    std::vector<std::uint64_t> particles(P * L, 0), acc(P * L * L, 0), chk(P * L * L, 0);
+    for (std::size_t i = 0; i < results.size(); ++i) {
+      const auto& r = results[i];
+      const std::size_t l = r.counts.levels;
+      for (std::size_t h = 0; h < l; ++h) {
+        sizes[i * L + h] = r.sizes[h];
+        particles[i * L + h] = r.counts.particles_per_level[h];
+        for (std::size_t k = 0; k < l; ++k) {
+          acc[(i * L + h) * L + k] = r.counts.accesses_by_level[h * l + k];
+          chk[(i * L + h) * L + k] = r.counts.checks_by_level[h * l + k];
+        }
+      }
+    }
+    h5_write_dataset(f, "sizes", sizes, {P, L});
+    h5_write_dataset(f, "particles_per_level", particles, {P, L});
+    h5_write_dataset(f, "accesses_by_level", acc, {P, L, L});
+    h5_write_dataset(f, "checks_by_level", chk, {P, L, L});
+    H5Handle root{H5Gopen2(f, "/", H5P_DEFAULT), H5Gclose};
+    h5_write_attr(root.id, "scene", scene.name);
+    h5_write_attr(root.id, "description", scene.description);
+    h5_write_attr(root.id, "scale", scene.scale);
+    h5_write_attr(root.id, "scene_toml", scene.source);
+    h5_write_attr(root.id, "cells", std::string(to_string(scene.grid.cells)));
+    h5_write_attr(root.id, "K", std::vector<double>{scene.grid.K});
+    h5_write_attr(root.id, "q", std::vector<double>{scene.grid.q});
+    h5_write_attr(root.id, "levels_requested", std::vector<double>{scene.grid.levels ? *scene.grid.levels : 0.0});
+    h5_write_attr(root.id, "git_hash", std::string(git_hash()));
+    h5_write_attr(root.id, "compiler", std::string(compiler_id()));
+    h5_write_attr(root.id, "created_utc", utc_now());
+    h5_write_attr(root.id, "matrix_layout", std::string("[point][level of the particle][level searched]"));
+  });
+  write_csv(stem + ".csv", scene, rows);
+}
+
+}  // namespace hgrid::detail

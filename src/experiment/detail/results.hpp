@@ -1,0 +1,19 @@
+// Scene results: JSON (journal, --json) and the HDF5 + CSV result files.
+#pragma once
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "experiment/runner.hpp"
+
+namespace hgrid::detail {
+
+nlohmann::json result_to_json(const PointResult& r);
+PointResult result_from_json(const nlohmann::json& j);
+
+/// Writes <stem>.h5 (raw counts per point and level, model values, the
+/// parameters, seeds, scene text, git hash, compiler, timings) and <stem>.csv
+/// (one row per point, named columns for gnuplot); both atomically.
+void write_results(const std::string& stem, const Scene& scene, const std::vector<PointResult>& results);
+
+}  // namespace hgrid::detail

@@ -1,0 +1,192 @@
+#include "experiment/runner.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "experiment/detail/results.hpp"
+#include "grid/dispatch.hpp"
+#include "model/distribution.hpp"
+#include "grid/hgrid.hpp"
+#include "model/model.hpp"
+#include "packing/packing_sizes.hpp"
+#include "experiment/packing_cache.hpp"
+
+namespace hgrid {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+/// Identifies a point within a scene for the resume journal.
+std::string point_key(const ScenePoint& p) { return packing_key(p.packing) + to_string(p.search); }
+
+}  // namespace
+
+PointResult run_point(const Scene& scene, const ScenePoint& point, const RunOptions& opt) {
+  PointResult r;
+  r.point = point;
+  auto t0 = Clock::now();
+  const Packing p = cached_packing(point.packing, opt.packing_dir);
+  r.seconds_packing = since(t0);
+  r.n = p.size();
+  r.nu_achieved = p.packing_fraction();
+
+  t0 = Clock::now();
+  const SizeRequest req{scene.grid.cells, scene.grid.levels, scene.grid.q};
+  const std::vector<double> sizes = model_sizes(p, req, point.search, scene.grid.K);
+  r.seconds_sizes = since(t0);
+
+  dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
+    constexpr int D = decltype(dim)::value;
+    constexpr Boundary B = decltype(bnd)::value;
+    const auto spheres = p.spheres<D>();
+    auto t1 = Clock::now();
+    const HGrid<D, B> grid(spheres, p.extent<D>(), GridParams{sizes, point.search});
+    r.seconds_build = since(t1);
+    t1 = Clock::now();
+    r.counts = grid.template for_each_pair<Counted>([](std::uint32_t, std::uint32_t) {});
+    r.seconds_query = since(t1);
+    r.sizes = grid.sizes();
+    if (scene.record.occupancy) {
+      const auto occ = grid.occupancy(0);
+      r.share_multi_lowest = static_cast<double>(occ[2]) / static_cast<double>(occ[0] + occ[1] + occ[2]);
+    } else {
+      r.share_multi_lowest = std::nan("");
+    }
+  });
+  const double n = static_cast<double>(r.n);
+  r.T_over_N = r.counts.cost(scene.grid.K) / n;
+  r.T_cd_over_N = static_cast<double>(r.counts.narrow_phase_checks) / n;
+  r.T_ca_over_N = static_cast<double>(r.counts.cell_accesses) / n;
+  if (scene.record.model) {
+    // The model for the same radii, packing fraction and (fitted) sizes.
+    const Empirical dist(p.radii);
+    std::vector<double> s = r.sizes;
+    s.back() = std::max(s.back(), 2 * dist.r_max());
+    const ModelResult m = evaluate_model(dist, ModelParams{p.d, r.nu_achieved, scene.grid.K, point.search}, s);
+    r.model_T_over_N = m.T_over_N;
+    r.model_T_cd_over_N = m.T_cd_over_N;
+    r.model_T_ca_over_N = m.T_ca_over_N;
+  } else {
+    r.model_T_over_N = r.model_T_cd_over_N = r.model_T_ca_over_N = std::nan("");
+  }
+  return r;
+}
+
+std::string result_stem(const Scene& scene, const RunOptions& opt) {
+  const std::string suffix = scene.scale == "default" ? "" : "-" + scene.scale;
+  return (std::filesystem::path(opt.results_dir) / (scene.name + suffix)).string();
+}
+
+std::vector<PointResult> run_scene(const Scene& scene, const RunOptions& opt) {
+  std::filesystem::create_directories(opt.results_dir);
+  const std::string stem = result_stem(scene, opt);
+  const std::string journal = stem + ".journal.jsonl";
+
+  // Resume: points measured by an interrupted run of the same scene text.
+  std::map<std::string, PointResult> done;
+  if (std::ifstream in(journal); in) {
+    for (std::string line; std::getline(in, line);) {
+      try {
+        const auto j = nlohmann::json::parse(line);
+        if (j.at("source") != scene.source) continue;
+        PointResult r = detail::result_from_json(j.at("result"));
+        done[point_key(r.point)] = r;
+      } catch (const std::exception&) {
+        // a line cut short by the interruption: measure that point again
+      }
+    }
+  }
+  std::vector<PointResult> results(scene.points.size());
+  std::vector<std::size_t> todo;
+  for (std::size_t i = 0; i < scene.points.size(); ++i) {
+    auto it = done.find(point_key(scene.points[i]));
+    if (it != done.end()) {
+      results[i] = it->second;
+    } else {
+      todo.push_back(i);
+    }
+  }
+  if (opt.progress && todo.size() < scene.points.size())
+    std::cerr << "hgrid run: " << scene.points.size() - todo.size() << " of " << scene.points.size()
+              << " points reused from " << journal << "\n";
+
+  // Points sharing a packing go to one worker, so it is generated once.
+  std::vector<std::vector<std::size_t>> groups;
+  {
+    std::map<std::string, std::size_t> group_of;
+    for (std::size_t i : todo) {
+      auto [it, fresh] = group_of.emplace(packing_key(scene.points[i].packing), groups.size());
+      if (fresh) groups.emplace_back();
+      groups[it->second].push_back(i);
+    }
+  }
+  std::mutex mu;
+  std::ofstream jout(journal, std::ios::app);
+  std::atomic<std::size_t> next{0};
+  std::size_t finished = 0;
+  std::exception_ptr failure;
+  const auto t_start = Clock::now();
+  auto worker = [&] {
+    for (;;) {
+      const std::size_t g = next++;
+      if (g >= groups.size()) return;
+      for (std::size_t i : groups[g]) {
+        {
+          std::lock_guard<std::mutex> lock(mu);
+          if (failure) return;
+        }
+        try {
+          PointResult r = run_point(scene, scene.points[i], opt);
+          std::lock_guard<std::mutex> lock(mu);
+          results[i] = r;
+          jout << nlohmann::json{{"source", scene.source}, {"result", detail::result_to_json(r)}}.dump() << "\n";
+          jout.flush();
+          ++finished;
+          if (opt.progress) {
+            const double el = since(t_start);
+            const double rate = finished / el;
+            const double eta = (todo.size() - finished) / rate;
+            std::fprintf(stderr, "hgrid run %s: %zu/%zu points (%.0f%%), %.3g points/s, ETA %.0f s\n",
+                         scene.name.c_str(), finished, todo.size(), 100.0 * finished / todo.size(), rate, eta);
+          }
+        } catch (...) {
+          std::lock_guard<std::mutex> lock(mu);
+          if (!failure) failure = std::current_exception();
+          return;
+        }
+      }
+    }
+  };
+  const int jobs = std::max(1, std::min<int>(opt.jobs, static_cast<int>(groups.size())));
+  std::vector<std::thread> pool;
+  for (int t = 1; t < jobs; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+  jout.close();
+  if (failure) std::rethrow_exception(failure);
+
+  detail::write_results(stem, scene, results);
+  std::filesystem::remove(journal);
+  return results;
+}
+
+std::string results_json(const Scene& scene, const std::vector<PointResult>& results, const RunOptions& opt) {
+  nlohmann::json out;
+  out["scene"] = scene.name;
+  out["scale"] = scene.scale;
+  out["results"] = result_stem(scene, opt) + ".h5";
+  out["points"] = nlohmann::json::array();
+  for (const auto& r : results) out["points"].push_back(detail::result_to_json(r));
+  return out.dump(2);
+}
+
+}  // namespace hgrid

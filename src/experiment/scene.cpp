@@ -1,0 +1,233 @@
+#include "experiment/scene.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <tuple>
+#include <utility>
+#include <toml++/toml.h>
+
+#include "experiment/calibration.hpp"
+#include "experiment/detail/toml_keys.hpp"
+
+#include "grid/error.hpp"
+
+namespace hgrid {
+namespace {
+
+using detail::check_keys;
+
+double as_number(const toml::node& n, const std::string& key) {
+  if (auto v = n.value<double>()) return *v;
+  throw InputError(key, "must be a number");
+}
+
+/// A scalar or an array of numbers, as a list.
+std::vector<double> numbers(const toml::node& n, const std::string& key) {
+  std::vector<double> out;
+  if (const auto* a = n.as_array()) {
+    for (const auto& e : *a) out.push_back(as_number(e, key));
+  } else {
+    out.push_back(as_number(n, key));
+  }
+  if (out.empty()) throw InputError(key, "must not be empty");
+  for (double v : out)
+    if (!std::isfinite(v)) throw InputError(key, "must be finite");
+  return out;
+}
+
+std::vector<std::string> strings(const toml::node& n, const std::string& key) {
+  std::vector<std::string> out;
+  auto one = [&](const toml::node& e) {
+    if (auto s = e.value<std::string>()) return *s;
+    throw InputError(key, "must be a string or a list of strings");
+  };
+  if (const auto* a = n.as_array()) {
+    for (const auto& e : *a) out.push_back(one(e));
+  } else {
+    out.push_back(one(n));
+  }
+  if (out.empty()) throw InputError(key, "must not be empty");
+  return out;
+}
+
+/// The packing lists of a scene, before expansion.
+struct PackingLists {
+  std::vector<double> d{3}, n, nu, alpha{-3}, omega{100}, sigma{0.5}, seeds{1};
+  std::vector<std::string> dist{"powerlaw"}, boundary{"periodic"}, placement{"random"};
+  bool equilibrate = false;
+};
+
+void read_packings(const toml::table& t, PackingLists& p, const std::string& where) {
+  check_keys(t, where, {"d", "n", "nu", "alpha", "omega", "sigma", "dist", "boundary", "placement", "seeds",
+                        "equilibrate"});
+  for (const auto& [k, v] : t) {
+    const std::string key(k.str());
+    const std::string name = where + key;
+    if (key == "d") p.d = numbers(v, name);
+    else if (key == "n") p.n = numbers(v, name);
+    else if (key == "nu") p.nu = numbers(v, name);
+    else if (key == "alpha") p.alpha = numbers(v, name);
+    else if (key == "omega") p.omega = numbers(v, name);
+    else if (key == "sigma") p.sigma = numbers(v, name);
+    else if (key == "seeds") p.seeds = numbers(v, name);
+    else if (key == "dist") p.dist = strings(v, name);
+    else if (key == "boundary") p.boundary = strings(v, name);
+    else if (key == "placement") p.placement = strings(v, name);
+    else if (key == "equilibrate") {
+      auto b = v.value<bool>();
+      if (!b) throw InputError(name, "must be true or false");
+      p.equilibrate = *b;
+    }
+  }
+}
+
+void check_lists(const PackingLists& p) {
+  if (p.n.empty()) throw InputError("packings.n", "is required (number of particles, >= 1)");
+  if (p.nu.empty()) throw InputError("packings.nu", "is required (packing fraction, > 0)");
+  for (double d : p.d)
+    if (d != 2 && d != 3) throw InputError("packings.d", "must be 2 or 3");
+  for (double n : p.n)
+    if (!(n >= 1 && n == std::floor(n) && n <= 2e9)) throw InputError("packings.n", "must be whole numbers in [1, 2e9]");
+  for (double nu : p.nu)
+    if (!(nu > 0 && nu < 1)) throw InputError("packings.nu", "must be in (0, 1)");
+  for (double w : p.omega)
+    if (!(w >= 1)) throw InputError("packings.omega", "must be >= 1");
+  for (double s : p.sigma)
+    if (!(s > 0)) throw InputError("packings.sigma", "must be > 0");
+  for (double s : p.seeds)
+    if (!(s >= 0 && s == std::floor(s) && s < 9.007e15)) throw InputError("packings.seeds", "must be whole numbers >= 0");
+  for (const auto& s : p.dist)
+    if (s != "powerlaw" && s != "lognormal") throw InputError("packings.dist", "must be 'powerlaw' or 'lognormal'");
+  for (const auto& s : p.boundary) parse_boundary(s, "packings.boundary");
+  for (const auto& s : p.placement)
+    parse_placement(s, "packings.placement");
+}
+
+void read_grid(const toml::table& t, SceneGrid& g) {
+  check_keys(t, "grid.", {"cells", "levels", "q", "K", "search"});
+  if (auto v = t["cells"]) {
+    g.cells = parse_cell_method(strings(*v.node(), "grid.cells").at(0), "grid.cells");
+  }
+  if (auto v = t["levels"]) {
+    const double L = numbers(*v.node(), "grid.levels").at(0);
+    if (!(L >= 1 && L == std::floor(L) && L <= 200)) throw InputError("grid.levels", "must be a whole number in [1, 200]");
+    g.levels = static_cast<int>(L);
+  }
+  if (auto v = t["q"]) {
+    g.q = numbers(*v.node(), "grid.q").at(0);
+    if (!(g.q > 0)) throw InputError("grid.q", "must be > 0");
+  }
+  if (auto v = t["K"]) {
+    if (auto text = v.value<std::string>()) {
+      if (*text != "auto") throw InputError("grid.K", "must be a number >= 0 or \"auto\" (got \"" + *text + "\")");
+      g.K = calibrated_K("grid.K");
+    } else {
+      g.K = numbers(*v.node(), "grid.K").at(0);
+      if (!(g.K >= 0)) throw InputError("grid.K", "must be >= 0");
+    }
+  }
+  if (auto v = t["search"]) {
+    g.searches.clear();
+    for (const auto& s : strings(*v.node(), "grid.search")) g.searches.push_back(parse_search(s, "grid.search"));
+  }
+}
+
+void read_record(const toml::table& t, SceneRecord& r) {
+  check_keys(t, "record.", {"model", "occupancy"});
+  for (const auto& [k, v] : t) {
+    auto b = v.value<bool>();
+    if (!b) throw InputError("record." + std::string(k.str()), "must be true or false");
+    (k.str() == "model" ? r.model : r.occupancy) = *b;
+  }
+}
+
+/// The file's text and its parsed table; InputError("scene", ...) if unreadable.
+std::pair<std::string, toml::table> parse_scene_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError("scene", "cannot open '" + path + "'");
+  std::stringstream buf;
+  buf << in.rdbuf();
+  try {
+    return {buf.str(), toml::parse(buf.str(), path)};
+  } catch (const toml::parse_error& e) {
+    std::ostringstream msg;
+    msg << e.description() << " at line " << e.source().begin.line;
+    throw InputError("scene", msg.str() + " in " + path);
+  }
+}
+
+}  // namespace
+
+std::string scene_kind(const std::string& path) {
+  const auto [text, root] = parse_scene_file(path);
+  const std::string kind = root["kind"].value_or(std::string("contact"));
+  if (kind != "contact" && kind != "dpm") throw InputError("kind", "must be 'contact' or 'dpm' (got '" + kind + "')");
+  return kind;
+}
+
+Scene load_scene(const std::string& path, const std::string& scale) {
+  Scene s;
+  toml::table root;
+  std::tie(s.source, root) = parse_scene_file(path);
+  s.scale = scale;
+  check_keys(root, "", {"name", "description", "kind", "packings", "grid", "record", "scale"});
+  if (root["kind"].value_or(std::string("contact")) != "contact")
+    throw InputError("kind", "this scene is not a contact-search scene (kind = 'contact')");
+  if (auto v = root["name"].value<std::string>()) s.name = *v;
+  else throw InputError("name", "is required (a string naming the scene and its result files)");
+  for (char c : s.name)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'))
+      throw InputError("name", "may contain only letters, digits, '_' and '-'");
+  if (auto v = root["description"].value<std::string>()) s.description = *v;
+
+  PackingLists lists;
+  const auto* packings = root["packings"].as_table();
+  if (!packings) throw InputError("packings", "a [packings] table is required");
+  read_packings(*packings, lists, "packings.");
+  if (const auto* scales = root["scale"].as_table()) {
+    check_keys(*scales, "scale.", {"smoke", "default", "paper"});
+    if (const auto* sc = (*scales)[scale].as_table()) {
+      check_keys(*sc, "scale." + scale + ".", {"packings"});
+      if (const auto* sp = (*sc)["packings"].as_table()) read_packings(*sp, lists, "scale." + scale + ".packings.");
+    }
+  }
+  if (scale != "smoke" && scale != "default" && scale != "paper")
+    throw InputError("scale", "must be smoke, default or paper (got '" + scale + "')");
+  check_lists(lists);
+  if (const auto* g = root["grid"].as_table()) read_grid(*g, s.grid);
+  if (const auto* r = root["record"].as_table()) read_record(*r, s.record);
+
+  // Cartesian product, in a fixed order (the order of the result rows).
+  for (double d : lists.d)
+    for (const auto& dist : lists.dist)
+      for (const auto& bnd : lists.boundary)
+        for (const auto& plc : lists.placement)
+          for (double alpha : lists.alpha)
+            for (double omega : lists.omega)
+              for (double sigma : lists.sigma)
+                for (double n : lists.n)
+                  for (double nu : lists.nu)
+                    for (double seed : lists.seeds)
+                      for (Search search : s.grid.searches) {
+                        ScenePoint pt;
+                        PackingSpec& p = pt.packing;
+                        p.d = static_cast<int>(d);
+                        p.n = static_cast<std::size_t>(n);
+                        p.nu = nu;
+                        p.dist = dist;
+                        p.alpha = alpha;
+                        p.omega = omega;
+                        p.sigma = sigma;
+                        p.boundary = parse_boundary(bnd);
+                        p.placement = plc == "random" ? Placement::random : Placement::excluded;
+                        p.seed = static_cast<std::uint64_t>(seed);
+                        p.equilibrate = lists.equilibrate;
+                        pt.search = search;
+                        s.points.push_back(pt);
+                      }
+  return s;
+}
+
+}  // namespace hgrid

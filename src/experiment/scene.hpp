@@ -1,0 +1,53 @@
+// Scene files (TOML): one experiment, the packings it needs and what it records.
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "model/cell_sizes.hpp"
+#include "packing/generate.hpp"
+#include "grid/params.hpp"
+
+namespace hgrid {
+
+/// How the grid of every point is set up.
+struct SceneGrid {
+  CellMethod cells = CellMethod::optimal;  // by the cost model, for the packing's own radii
+  std::optional<int> levels;      // fixed L, or the method's best L*
+  double q = 1.0;                 // ratio of particles per cell (constant method)
+  double K = 0.2;                 // cell access time / overlap test time
+  std::vector<Search> searches{Search::top_down};
+};
+
+/// What a scene records beyond the counts; nothing else is computed.
+struct SceneRecord {
+  bool model = true;       // evaluate the cost model for the sizes used
+  bool occupancy = false;  // share of lowest-level cells holding >= 2 particles
+};
+
+/// One unit of work: a packing and a search direction.
+struct ScenePoint {
+  PackingSpec packing;
+  Search search = Search::top_down;
+};
+
+struct Scene {
+  std::string name;
+  std::string description;
+  std::string scale;
+  std::string source;  // the TOML text, stored with the results
+  SceneGrid grid;
+  SceneRecord record;
+  std::vector<ScenePoint> points;  // the cartesian product of the packing lists
+};
+
+/// The scene's top-level `kind`: "contact" (default: one contact search per
+/// point, load_scene) or "dpm" (a discrete-element run, dpm/dpm_scene.hpp).
+std::string scene_kind(const std::string& path);
+
+/// Reads a scene for one scale ("smoke", "default", "paper"): the base
+/// [packings] table with [scale.<name>.packings] keys replacing it. Unknown
+/// keys and out-of-range values throw InputError naming the key.
+Scene load_scene(const std::string& path, const std::string& scale);
+
+}  // namespace hgrid

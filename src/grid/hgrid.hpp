@@ -1,0 +1,314 @@
+// The hierarchical grid (HGrid) of Krijgsman, Ogarko & Luding (2014), Sect. 2:
+// a value type built from a span of spheres, a box and one params struct.
+#pragma once
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "grid/counters.hpp"
+#include "grid/detail/levels.hpp"
+#include "grid/detail/stencil.hpp"
+#include "grid/detail/uninit_allocator.hpp"
+#include "grid/error.hpp"
+#include "grid/geometry.hpp"
+#include "grid/params.hpp"
+
+namespace hgrid {
+
+/// D = 2 or 3; B = walls or periodic. Construction maps every particle to its
+/// level of insertion (lowest h with 2 r <= s_h, Eq. 3) and cell (Eq. 1), and
+/// stores the particles sorted by (level, cell) with one flat directory of
+/// cell start offsets filled by a counting sort.
+template <int D, Boundary B>
+class HGrid {
+  static_assert(D == 2 || D == 3, "HGrid supports d = 2 and d = 3");
+
+ public:
+  HGrid(std::span<const Sphere<D>> spheres, const Extent<D>& box, const GridParams& params);
+
+  /// Rebuilds the grid for new particles (positions, radii, count) in the
+  /// same box with the same params: the same grid as constructing a new one,
+  /// but the arrays of the previous build are reused, and a workspace (22-40
+  /// bytes per particle, workspace_bytes()) is kept for the next call: it
+  /// allocates only when an array must grow beyond its largest size so far
+  /// (more particles, a fuller cell range than before). If the input is
+  /// rejected (InputError), the grid is left as it was.
+  void rebuild(std::span<const Sphere<D>> spheres);
+
+  /// Hands every overlapping pair (distance < r_i + r_j; minimum image in a
+  /// periodic box) to f(i, j) exactly once, with i < j the input indices.
+  /// Search direction and counting are compile-time policies.
+  template <Search S, class Count = Uncounted, class F>
+  Counters query(F&& f) const;
+
+  /// Same, with the direction of the params struct.
+  template <class Count = Uncounted, class F>
+  Counters for_each_pair(F&& f) const {
+    return params_.search == Search::top_down ? query<Search::top_down, Count>(f)
+                                              : query<Search::bottom_up, Count>(f);
+  }
+
+  int levels() const { return static_cast<int>(levels_.size()); }
+  std::size_t size() const { return sorted_.size(); }
+  /// Cell sizes actually used (periodic boxes fit an integer number of cells
+  /// per axis, so a size can grow; the smallest side per level is reported).
+  std::vector<double> sizes() const {
+    std::vector<double> out;
+    for (const auto& L : levels_) out.push_back(L.s_min);
+    return out;
+  }
+  std::vector<std::uint64_t> particles_per_level() const {
+    std::vector<std::uint64_t> out;
+    for (std::size_t h = 0; h < levels_.size(); ++h) out.push_back(level_begin_[h + 1] - level_begin_[h]);
+    return out;
+  }
+  /// Cells of level h (0-based) holding 0, 1, and 2 or more particles.
+  std::array<std::uint64_t, 3> occupancy(int h) const {
+    const auto& lv = levels_.at(h);
+    std::array<std::uint64_t, 3> out{lv.cells(), 0, 0};
+    for_each_cell(lv, [&](std::uint64_t b, std::uint64_t) {
+      --out[0];
+      ++out[start_[b + 1] - start_[b] >= 2 ? 2 : 1];
+    });
+    return out;
+  }
+  const GridParams& params() const { return params_; }
+  const Extent<D>& box() const { return box_; }
+  /// Bytes of the workspace kept by rebuild() (none after construction).
+  std::size_t workspace_bytes() const { return scratch_.bytes(); }
+  /// Bytes held by the grid, including its sorted copy of the particles
+  /// (not counting the workspace of rebuild()).
+  std::size_t memory_bytes() const {
+    return sorted_.capacity() * sizeof(Sphere<D>) + id_.capacity() * sizeof(std::uint32_t) +
+           start_.capacity() * sizeof(std::uint32_t) + keys_.capacity() * sizeof(std::uint64_t) +
+           slot_bucket_.capacity() * sizeof(std::uint32_t) +
+           words_.capacity() * sizeof(std::uint64_t) + rank_.capacity() * sizeof(std::uint32_t) +
+           sweep_.capacity() * sizeof(std::uint32_t) + levels_.capacity() * sizeof(detail::Level<D>);
+  }
+
+ private:
+  using Coords = std::array<std::int64_t, D>;
+
+  /// Working arrays of a build (keys, coarse buckets, in-bucket sort
+  /// buffers, sweep-order keys): freed after construction, kept by rebuild().
+  /// Not part of the grid's value: a copy of a grid starts without one.
+  struct Scratch {
+    Scratch() = default;
+    Scratch(const Scratch&) {}
+    Scratch(Scratch&&) = default;
+    Scratch& operator=(const Scratch&) { return *this; }
+    Scratch& operator=(Scratch&&) = default;
+    detail::UninitVector<std::uint64_t> key_in, key, tkey, k0, tk;
+    detail::UninitVector<std::uint32_t> coarse, order, torder, tid, t;
+    detail::UninitVector<Sphere<D>> tsph;
+    std::vector<std::uint32_t> cursor, bucket_begin, coarse_base;
+    std::vector<int> shift;
+    std::size_t bytes() const {
+      return (key_in.capacity() + key.capacity() + tkey.capacity() + k0.capacity() + tk.capacity()) *
+                 sizeof(std::uint64_t) +
+             (coarse.capacity() + order.capacity() + torder.capacity() + tid.capacity() + t.capacity() +
+              cursor.capacity() + bucket_begin.capacity() + coarse_base.capacity()) *
+                 sizeof(std::uint32_t) +
+             tsph.capacity() * sizeof(Sphere<D>) + shift.capacity() * sizeof(int);
+    }
+  };
+  /// Sorts the particles into the levels' cells and fills the directory
+  /// (levels_ must hold the geometry of params_ and box_).
+  void build(std::span<const Sphere<D>> spheres, Scratch& ws);
+
+  /// Bucket of the cell with this key, or kNoBucket if the cell is empty.
+  std::uint64_t bucket(const detail::Level<D>& L, std::uint64_t key) const {
+    if (L.ranked) {
+      const std::uint64_t w = L.word_base + (key >> 6);
+      const std::uint64_t bit = std::uint64_t{1} << (key & 63);
+      const std::uint64_t word = words_[w];
+      if (!(word & bit)) return detail::kNoBucket;
+      return L.bucket_base + rank_[w] + static_cast<std::uint64_t>(std::popcount(word & (bit - 1)));
+    }
+    const std::uint64_t mask = L.slots - 1;
+    std::uint64_t slot = detail::hash_key(key) >> L.shift;
+    for (;;) {
+      const std::uint64_t k = keys_[L.key_base + slot];
+      if (k == key) return L.bucket_base + slot_bucket_[L.key_base + slot];
+      if (k == detail::kEmptyKey) return detail::kNoBucket;
+      slot = (slot + 1) & mask;
+    }
+  }
+  /// A ranked level's directory as plain pointers, buckets counted from the
+  /// level's first (so that the loops using it keep them in registers).
+  struct RankView {
+    const std::uint64_t* words;
+    const std::uint32_t* ranks;
+    const std::uint32_t* start;  // start_ from the level's first bucket
+    /// The first bucket at or after cell key k (0 <= k <= cells).
+    [[gnu::always_inline]] std::uint32_t rank(std::uint64_t k) const {
+      const std::uint64_t below = (std::uint64_t{1} << (k & 63)) - 1;
+      return ranks[k >> 6] + static_cast<std::uint32_t>(std::popcount(words[k >> 6] & below));
+    }
+    /// The particles of the cells with keys in [k0, k1), which are one
+    /// contiguous range of the sorted array because buckets follow keys.
+    [[gnu::always_inline]] std::pair<std::uint32_t, std::uint32_t> run(std::uint64_t k0, std::uint64_t k1) const {
+      return {start[rank(k0)], start[rank(k1)]};
+    }
+  };
+  RankView rank_view(const detail::Level<D>& L) const {
+    return {words_.data() + L.word_base, rank_.data() + L.word_base, start_.data() + L.bucket_base};
+  }
+  /// Calls f(bucket, cell key) for every non-empty cell of level L.
+  template <class F>
+  void for_each_cell(const detail::Level<D>& L, F&& f) const {
+    if (L.ranked) {
+      std::uint64_t b = L.bucket_base;
+      for (std::uint64_t w = 0; w < L.words; ++w)
+        for (std::uint64_t bits = words_[L.word_base + w]; bits; bits &= bits - 1)
+          f(b++, (w << 6) | static_cast<std::uint64_t>(std::countr_zero(bits)));
+      return;
+    }
+    for (std::uint64_t k = 0; k < L.slots; ++k)
+      if (keys_[L.key_base + k] != detail::kEmptyKey)
+        f(L.bucket_base + slot_bucket_[L.key_base + k], keys_[L.key_base + k]);
+  }
+  /// Content of the cell with the given coordinates at level L: [begin, end).
+  std::pair<std::uint32_t, std::uint32_t> cell_range(const detail::Level<D>& L, const Coords& c) const {
+    const std::uint64_t b = bucket(L, L.key(c));
+    if (b == detail::kNoBucket) return {0, 0};
+    return {start_[b], start_[b + 1]};
+  }
+  /// Splits the cells [lo, hi] of the row starting at key `row` (along axis
+  /// D-1, n cells, hi - lo < n) into at most two runs of keys at a periodic
+  /// seam, and calls g(k0, k1) for each.
+  template <class G>
+  static void row_runs(std::uint64_t row, std::int64_t lo, std::int64_t hi, std::int64_t n, G& g) {
+    const auto u = [](std::int64_t v) { return static_cast<std::uint64_t>(v); };
+    if (lo < 0) {
+      g(row + u(n + lo), row + u(n));
+      g(row, row + u(hi + 1));
+    } else if (hi >= n) {
+      g(row + u(lo), row + u(n));
+      g(row, row + u(hi - n + 1));
+    } else {
+      g(row + u(lo), row + u(hi + 1));
+    }
+  }
+  /// Key offsets, from a cell to the rows of its half stencil (the offsets
+  /// of the axes before the row axis D-1 whose first non-zero component is
+  /// +1), valid on a ranked level with at least 3 cells per periodic axis.
+  struct StencilRows {
+    std::array<std::int64_t, detail::kHalfStencil<D - 1>> delta{};
+    RankView dir{};  // valid on a ranked level
+    bool valid = false;
+    /// Periodic level with at least 5 cells per axis: between an interior
+    /// cell and its neighbours |dx| < 2 s + rounding < A / 2 on every axis,
+    /// so the minimum image is the plain difference.
+    bool plain_dx = false;
+  };
+  StencilRows stencil_rows(const detail::Level<D>& L) const;
+  /// Number of cells of the same-level half stencil of the non-empty cell
+  /// with coordinates c, key and bucket b (MODEL.md section 1; interior: c is
+  /// on neither the first nor the last cell of any axis); calls
+  /// add(begin, end) with the particles of its cells, a row of cells at a
+  /// time where the level allows it (a range may be empty).
+  template <class Add>
+  std::uint64_t half_stencil(const detail::Level<D>& L, const StencilRows& rows, const Coords& c,
+                             std::uint64_t key, std::uint64_t b, bool interior, Add&& add) const;
+
+  /// Candidate ranges of at most this many particles are appended to an
+  /// index list without a branch on their length (see append_short).
+  static constexpr std::uint32_t kShortRange = 4;
+  /// Appends the range [qb, qe) to cand at n if it is short (returns true),
+  /// with a fixed kShortRange-wide store: cand needs kShortRange free entries
+  /// past n whatever the range's length.
+  template <std::size_t C>
+  static bool append_short(std::array<std::uint32_t, C>& cand, std::uint32_t& n, std::uint32_t qb, std::uint32_t qe) {
+    if (qe - qb > kShortRange) return false;
+    std::uint32_t* const d = cand.data() + n;  // not cand[n + t]: 32-bit index arithmetic does not combine into one store
+    for (std::uint32_t t = 0; t < kShortRange; ++t) d[t] = qb + t;
+    n += qe - qb;
+    return true;
+  }
+
+  /// Buffers the overlapping pairs (as sorted positions) and hands them to
+  /// the callback, as input indices i < j, a batch at a time, so that an
+  /// overlap test can do without a branch on its outcome.
+  template <class F>
+  struct Emit {
+    F& f;
+    const std::uint32_t* id;
+    std::array<std::pair<std::uint32_t, std::uint32_t>, 64> buf;
+    std::uint32_t n = 0;
+    void flush() {
+      for (std::uint32_t k = 0; k < n; ++k) {
+        const std::uint32_t i = id[buf[k].first], j = id[buf[k].second];
+        f(std::min(i, j), std::max(i, j));  // no branch: the order of i and j is random
+      }
+      n = 0;
+    }
+  };
+
+  /// Overlap test of sorted particles p and q; an overlapping pair goes to
+  /// the buffer. Branchy: for long runs of candidates, which rarely overlap
+  /// (a linked cell's cells), where the branch predicts well.
+  /// TB = walls skips the minimum image where it cannot change the
+  /// displacement (same result, bit for bit).
+  template <class Count, Boundary TB = B, class E>
+  void test(std::uint32_t p, std::uint32_t q, E& e, Counters& out) const {
+    if (detail::overlap<D, TB>(sorted_[p], sorted_[q], box_)) {
+      if constexpr (Count::enabled) ++out.contacts;
+      e.buf[e.n++] = {p, q};
+      if (e.n == e.buf.size()) e.flush();
+    }
+  }
+  /// Overlap tests of p against a list of candidates, without a branch on
+  /// their outcome: for the short candidate lists of sparse levels, where
+  /// about one check in six overlaps. The buffer's fill count and p's sphere
+  /// stay in registers.
+  template <class Count, Boundary TB = B, class E>
+  void test_list(std::uint32_t p, const std::uint32_t* cand, std::uint32_t n_cand, E& e, Counters& out) const {
+    const Sphere<D> sp = sorted_[p];
+    const Sphere<D>* const s = sorted_.data();
+    std::uint32_t n = e.n;
+    for (std::uint32_t m = 0; m < n_cand; ++m) {
+      const std::uint32_t q = cand[m];
+      const bool hit = detail::overlap<D, TB>(sp, s[q], box_);
+      if constexpr (Count::enabled) out.contacts += hit;
+      e.buf[n] = {p, q};
+      n += hit;
+      if (n == e.buf.size()) {
+        e.n = n;
+        e.flush();
+        n = 0;
+      }
+    }
+    e.n = n;
+  }
+
+  template <class Count, class F>
+  void cross_level(std::uint32_t p, int h, int j, F& f, Counters& out) const;
+  /// Top-Down cross-level phase: every particle above the lowest level
+  /// searches the levels below it, in the order of sweep_.
+  template <class Count, class F>
+  void top_down_sweep(F& f, Counters& out) const;
+
+  GridParams params_;
+  Extent<D> box_{};
+  std::vector<detail::Level<D>> levels_;
+  detail::UninitVector<Sphere<D>> sorted_;      // particles sorted by (level, cell)
+  detail::UninitVector<std::uint32_t> id_;      // input index of each sorted particle
+  detail::UninitVector<std::uint32_t> start_;   // bucket -> first sorted particle; one past the last bucket too
+  std::vector<std::uint64_t> keys_;      // cell keys of the hashed levels' tables
+  std::vector<std::uint32_t> slot_bucket_;  // bucket (within its level) of each table slot
+  std::vector<std::uint64_t> words_;     // ranked levels: one bit per cell, set if non-empty
+  std::vector<std::uint32_t> rank_;      // ranked levels: set bits before each word (within its level)
+  std::vector<std::uint32_t> level_begin_;  // first sorted particle of each level, plus N
+  std::vector<std::uint32_t> sweep_;     // the particles above the lowest level, by their lowest-level cell
+  Scratch scratch_;                      // rebuild()'s workspace
+};
+
+}  // namespace hgrid
+
+#include "grid/detail/hgrid_build.hpp"
+#include "grid/detail/hgrid_query.hpp"

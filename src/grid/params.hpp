@@ -1,0 +1,31 @@
+// The one plain parameter struct of the HGrid.
+#pragma once
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "grid/error.hpp"
+
+namespace hgrid {
+
+/// Cross-level search direction (MODEL.md section 1): Top-Down tests a
+/// particle against the levels below its own, Bottom-Up against those above.
+enum class Search { top_down, bottom_up };
+
+inline const char* to_string(Search s) { return s == Search::top_down ? "topdown" : "bottomup"; }
+
+/// "topdown" or "bottomup"; anything else throws InputError naming `field`.
+inline Search parse_search(std::string_view s, const std::string& field = "search") {
+  if (s == "topdown") return Search::top_down;
+  if (s == "bottomup") return Search::bottom_up;
+  throw InputError(field, "must be 'topdown' or 'bottomup' (got '" + std::string(s) + "')");
+}
+
+struct GridParams {
+  /// Cell sizes s_1 < ... < s_L (L >= 1, strictly increasing, all > 0);
+  /// s_L must be at least the largest particle diameter.
+  std::vector<double> sizes;
+  Search search = Search::top_down;
+};
+
+}  // namespace hgrid

@@ -1,0 +1,126 @@
+#include "io/h5.hpp"
+
+#include <cstring>
+
+#include "grid/error.hpp"
+
+namespace hgrid::detail {
+
+std::recursive_mutex& h5_mutex() {
+  static std::recursive_mutex m;
+  return m;
+}
+
+void h5_silence() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+
+std::vector<double> h5_read_double_attr(hid_t obj, const char* name, const std::string& file) {
+  H5Handle a{H5Aopen(obj, name, H5P_DEFAULT), H5Aclose};
+  if (a.id < 0) throw InputError(name, "attribute missing in " + file);
+  H5Handle sp{H5Aget_space(a.id), H5Sclose};
+  const hssize_t n = H5Sget_simple_extent_npoints(sp.id);
+  std::vector<double> v(n > 0 ? n : 0);
+  if (n > 0 && H5Aread(a.id, H5T_NATIVE_DOUBLE, v.data()) < 0)
+    throw InputError(name, "attribute is not numeric in " + file);
+  return v;
+}
+
+std::string h5_read_string_attr(hid_t obj, const char* name, const std::string& file) {
+  H5Handle a{H5Aopen(obj, name, H5P_DEFAULT), H5Aclose};
+  if (a.id < 0) throw InputError(name, "attribute missing in " + file);
+  H5Handle t{H5Aget_type(a.id), H5Tclose};
+  if (H5Tget_class(t.id) != H5T_STRING) throw InputError(name, "attribute is not a string in " + file);
+  if (H5Tis_variable_str(t.id) > 0) {
+    H5Handle mt{H5Tcopy(H5T_C_S1), H5Tclose};
+    H5Tset_size(mt.id, H5T_VARIABLE);
+    char* buf = nullptr;
+    if (H5Aread(a.id, mt.id, &buf) < 0) throw InputError(name, "unreadable attribute in " + file);
+    std::string s = buf ? buf : "";
+    H5free_memory(buf);
+    return s;
+  }
+  const std::size_t size = H5Tget_size(t.id);
+  std::string s(size, '\0');
+  H5Handle mt{H5Tcopy(H5T_C_S1), H5Tclose};
+  H5Tset_size(mt.id, size);
+  if (H5Aread(a.id, mt.id, s.data()) < 0) throw InputError(name, "unreadable attribute in " + file);
+  s.resize(std::strlen(s.c_str()));
+  return s;
+}
+
+std::vector<double> h5_read_dataset(hid_t file, const char* name, std::vector<hsize_t>& dims, const std::string& path) {
+  H5Handle ds{H5Dopen2(file, name, H5P_DEFAULT), H5Dclose};
+  if (ds.id < 0) throw InputError(name, "dataset missing in " + path);
+  H5Handle sp{H5Dget_space(ds.id), H5Sclose};
+  const int rank = H5Sget_simple_extent_ndims(sp.id);
+  if (rank < 1 || rank > 2) throw InputError(name, "dataset must have rank 1 or 2 in " + path);
+  dims.assign(rank, 0);
+  H5Sget_simple_extent_dims(sp.id, dims.data(), nullptr);
+  hsize_t n = 1;
+  for (auto v : dims) n *= v;
+  std::vector<double> out(n);
+  if (n > 0 && H5Dread(ds.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+    throw InputError(name, "could not read dataset (truncated or corrupt file?) in " + path);
+  return out;
+}
+
+void h5_write_attr(hid_t obj, const std::string& name, const std::vector<double>& v) {
+  const hsize_t n = v.size();
+  H5Handle sp{n == 1 ? H5Screate(H5S_SCALAR) : H5Screate_simple(1, &n, nullptr), H5Sclose};
+  H5Handle a{H5Acreate2(obj, name.c_str(), H5T_NATIVE_DOUBLE, sp.id, H5P_DEFAULT, H5P_DEFAULT), H5Aclose};
+  if (a.id < 0 || H5Awrite(a.id, H5T_NATIVE_DOUBLE, v.data()) < 0)
+    throw std::runtime_error("HDF5: cannot write attribute " + name);
+}
+
+void h5_write_attr(hid_t obj, const std::string& name, const std::string& v) {
+  H5Handle t{H5Tcopy(H5T_C_S1), H5Tclose};
+  H5Tset_size(t.id, v.empty() ? 1 : v.size());
+  H5Handle sp{H5Screate(H5S_SCALAR), H5Sclose};
+  H5Handle a{H5Acreate2(obj, name.c_str(), t.id, sp.id, H5P_DEFAULT, H5P_DEFAULT), H5Aclose};
+  if (a.id < 0 || H5Awrite(a.id, t.id, v.c_str()) < 0) throw std::runtime_error("HDF5: cannot write attribute " + name);
+}
+
+namespace {
+/// Dataset creation without modification times, so that the same content
+/// gives the same file bit for bit.
+hid_t untimed_dcpl() {
+  const hid_t p = H5Pcreate(H5P_DATASET_CREATE);
+  H5Pset_obj_track_times(p, false);
+  return p;
+}
+
+template <class T>
+void write_numeric(hid_t file, const std::string& name, const std::vector<T>& v, std::vector<hsize_t> dims,
+                   hid_t file_type, hid_t mem_type) {
+  H5Handle sp{H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose};
+  const H5Handle dcpl{untimed_dcpl(), H5Pclose};
+  H5Handle ds{H5Dcreate2(file, name.c_str(), file_type, sp.id, H5P_DEFAULT, dcpl.id, H5P_DEFAULT), H5Dclose};
+  if (ds.id < 0 || (!v.empty() && H5Dwrite(ds.id, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data()) < 0))
+    throw std::runtime_error("HDF5: cannot write dataset " + name);
+}
+}  // namespace
+
+void h5_write_dataset(hid_t file, const std::string& name, const std::vector<double>& v, std::vector<hsize_t> dims) {
+  write_numeric(file, name, v, std::move(dims), H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE);
+}
+
+void h5_write_dataset(hid_t file, const std::string& name, const std::vector<std::uint64_t>& v,
+                      std::vector<hsize_t> dims) {
+  write_numeric(file, name, v, std::move(dims), H5T_STD_U64LE, H5T_NATIVE_UINT64);
+}
+
+void h5_write_strings(hid_t file, const std::string& name, const std::vector<std::string>& v) {
+  std::size_t width = 1;
+  for (const auto& s : v) width = std::max(width, s.size());
+  std::vector<char> buf(width * v.size(), '\0');
+  for (std::size_t i = 0; i < v.size(); ++i) std::memcpy(buf.data() + i * width, v[i].data(), v[i].size());
+  H5Handle t{H5Tcopy(H5T_C_S1), H5Tclose};
+  H5Tset_size(t.id, width);
+  const hsize_t n = v.size();
+  H5Handle sp{H5Screate_simple(1, &n, nullptr), H5Sclose};
+  const H5Handle dcpl{untimed_dcpl(), H5Pclose};
+  H5Handle ds{H5Dcreate2(file, name.c_str(), t.id, sp.id, H5P_DEFAULT, dcpl.id, H5P_DEFAULT), H5Dclose};
+  if (ds.id < 0 || (n > 0 && H5Dwrite(ds.id, t.id, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()) < 0))
+    throw std::runtime_error("HDF5: cannot write dataset " + name);
+}
+
+}  // namespace hgrid::detail

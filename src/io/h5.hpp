@@ -1,0 +1,71 @@
+// Small HDF5 helpers shared by packing and result files (HDF5 C API).
+#pragma once
+#include <hdf5.h>
+
+#include <atomic>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+#include <unistd.h>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "grid/error.hpp"
+
+namespace hgrid::detail {
+
+/// Debian's HDF5 is built without thread safety: every use holds this lock.
+std::recursive_mutex& h5_mutex();
+
+/// Closes an HDF5 handle when it goes out of scope.
+struct H5Handle {
+  hid_t id;
+  herr_t (*close)(hid_t);
+  H5Handle(hid_t i, herr_t (*c)(hid_t)) : id(i), close(c) {}
+  H5Handle(const H5Handle&) = delete;
+  H5Handle& operator=(const H5Handle&) = delete;
+  ~H5Handle() {
+    if (id >= 0) close(id);
+  }
+};
+
+/// Turns off HDF5's own error printing; errors are reported by the caller.
+void h5_silence();
+
+std::vector<double> h5_read_double_attr(hid_t obj, const char* name, const std::string& file);
+std::string h5_read_string_attr(hid_t obj, const char* name, const std::string& file);
+std::vector<double> h5_read_dataset(hid_t file, const char* name, std::vector<hsize_t>& dims, const std::string& path);
+
+void h5_write_attr(hid_t obj, const std::string& name, const std::vector<double>& v);
+void h5_write_attr(hid_t obj, const std::string& name, const std::string& v);
+void h5_write_dataset(hid_t file, const std::string& name, const std::vector<double>& v, std::vector<hsize_t> dims);
+void h5_write_dataset(hid_t file, const std::string& name, const std::vector<std::uint64_t>& v,
+                      std::vector<hsize_t> dims);
+void h5_write_strings(hid_t file, const std::string& name, const std::vector<std::string>& v);
+
+/// Creates `path` through a temporary file: fill(file_id) writes the content,
+/// then the file is closed and renamed onto `path`. Nothing is left at `path`
+/// (or at the temporary name) if fill throws.
+template <class Fill>
+void h5_write_file(const std::string& path, Fill&& fill) {
+  std::lock_guard<std::recursive_mutex> lock(h5_mutex());
+  h5_silence();
+  static std::atomic<unsigned> counter{0};
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
+  try {
+    H5Handle fcpl{H5Pcreate(H5P_FILE_CREATE), H5Pclose};
+    H5Pset_obj_track_times(fcpl.id, false);  // root group: no time stamps either
+    H5Handle f{H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, fcpl.id, H5P_DEFAULT), H5Fclose};
+    if (f.id < 0) throw InputError("out", "cannot create '" + tmp + "'");
+    fill(f.id);
+    if (H5Fflush(f.id, H5F_SCOPE_GLOBAL) < 0) throw std::runtime_error("HDF5: flush failed for " + tmp);
+  } catch (...) {
+    std::remove(tmp.c_str());
+    throw;
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+}  // namespace hgrid::detail

@@ -1,0 +1,47 @@
+// Choosing the HGrid cell sizes for a size distribution (MODEL.md section 4;
+// paper Sect. 5): linear, exponential, constant ratio of particles per cell,
+// optimal; and the best number of levels L* for each.
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "model/distribution.hpp"
+#include "model/model.hpp"
+
+namespace hgrid {
+
+enum class CellMethod { linear, exponential, constant, optimal };
+
+/// "linear" | "exponential" | "constant" | "optimal"; anything else throws
+/// InputError naming `field`.
+CellMethod parse_cell_method(const std::string& name, const std::string& field = "cells");
+const char* to_string(CellMethod m);
+
+struct SizeChoice {
+  int levels = 0;
+  std::vector<double> sizes;  // s_1..s_L, absolute (the distribution's unit)
+  ModelResult model;
+};
+
+/// Relative tolerance that defines L* for the optimal method: the smallest L
+/// whose optimum is within this of the best over all L (extra levels collapse).
+inline constexpr double kLevelsFlatRelTol = 1e-6;
+
+/// Sizes s_1..s_L by one method for a fixed L >= 1 (q: ratio m_{h+1}/m_h of
+/// the constant method, > 0). Optimal minimises T over s_1..s_{L-1} under
+/// s_0 = 2 r_min <= s_1 <= ... <= s_L = 2 r_max.
+std::vector<double> cell_sizes(const Distribution& dist, const ModelParams& p, CellMethod method,
+                               int levels, double q = 1.0);
+
+/// Sizes and cost for `levels`, or, without it, for the best L (L*): the L
+/// with the least T (ties and, for optimal, anything within kLevelsFlatRelTol
+/// go to the smallest L). The scan stops at 5000 levels (constant method: 256).
+SizeChoice choose_cell_sizes(const Distribution& dist, const ModelParams& p, CellMethod method,
+                             std::optional<int> levels = std::nullopt, double q = 1.0);
+
+/// T/N for every L = 1..max_levels by one method (the curves of Figs. 6 and 9).
+std::vector<double> cost_versus_levels(const Distribution& dist, const ModelParams& p,
+                                       CellMethod method, int max_levels, double q = 1.0);
+
+}  // namespace hgrid

@@ -1,0 +1,41 @@
+// Growth of all radii with FIRE relaxation of a harmonic overlap energy:
+// reaches packing fractions where random sequential addition stalls.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "packing/detail/gen_common.hpp"
+#include "grid/geometry.hpp"
+
+namespace hgrid::detail {
+
+/// Radius growth factor per growth step (0.5 %).
+inline constexpr double kGrowthStep = 1.005;
+/// Largest relative overlap overlap / (r_i + r_j) accepted after each growth
+/// step, and at the end.
+inline constexpr double kStepOverlapTol = 2e-3;
+inline constexpr double kFinalOverlapTol = 1e-4;
+/// FIRE step budget per growth step and in total.
+inline constexpr std::uint64_t kFireStepsPerGrowth = 20000;
+inline constexpr std::uint64_t kFireStepsTotal = 400000;
+/// Verlet skin of the neighbour list, relative to each radius.
+inline constexpr double kSkin = 0.25;
+
+struct RelaxStats {
+  std::uint64_t fire_steps = 0;
+  int growth_steps = 0;
+  int list_builds = 0;
+  double max_rel_overlap = 0;
+};
+
+/// Starts from non-overlapping centres pos (n x d) of spheres of radius
+/// scale0 * radii and grows them to radii (scale 1) in steps of kGrowthStep,
+/// relaxing with FIRE (Bitzek et al., Phys. Rev. Lett. 97, 170201 (2006);
+/// unit masses, unit stiffness) after each step. With walls, spheres also
+/// feel a harmonic wall. Returns false (stats say how far it got) when a step
+/// budget runs out.
+bool grow_and_relax(int d, Boundary b, const std::array<double, 3>& box, const std::vector<double>& radii,
+                    double scale0, std::vector<double>& pos, Progress& progress, RelaxStats& stats);
+
+}  // namespace hgrid::detail

@@ -1,0 +1,121 @@
+// Packing generators: radii drawn from a size distribution, a box
+// sized for an exact packing fraction, and centres placed either at random
+// (the cost model's assumption, MODEL.md section 3) or with excluded volume
+// (the paper's measured packings, figures 11-12).
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "model/distribution.hpp"
+#include "packing/packing.hpp"
+
+namespace hgrid {
+
+// ---- the experiments' interface ------------------------------------------
+
+enum class Placement { random, excluded };
+
+inline const char* to_string(Placement p) { return p == Placement::random ? "random" : "excluded"; }
+/// "random" | "excluded"; anything else throws InputError naming `field`.
+Placement parse_placement(const std::string& s, const std::string& field = "placement");
+
+/// Everything that determines a generated packing (and its cache key).
+struct PackingSpec {
+  int d = 3;
+  std::size_t n = 0;
+  double nu = 0.3;                 // total particle volume / box volume
+  std::string dist = "powerlaw";   // "powerlaw" | "lognormal"
+  double alpha = -3, omega = 100;  // power-law exponent; r_max / r_min (r_min = 1)
+  double sigma = 0.5;              // lognormal: sigma of ln r (median at sqrt(omega))
+  Boundary boundary = Boundary::periodic;
+  Placement placement = Placement::random;
+  std::uint64_t seed = 1;
+  bool equilibrate = false;  // excluded only: hard-sphere equilibration after placement
+  bool progress = true;      // progress lines on stderr for long generations
+};
+
+/// The radius distribution a spec names (r_min = 1). Throws InputError.
+std::unique_ptr<Distribution> make_distribution(const PackingSpec& spec);
+
+/// Generates a packing. Radii: inverse-CDF draws (in draw order in the file);
+/// box: cubic, sized so the achieved nu equals spec.nu for those radii.
+/// Random placement: independent uniform centres (walls: each centre at least
+/// its radius from every wall). Excluded placement: largest-first random
+/// sequential addition; where that stalls (alpha >= -1 at high nu), addition
+/// at a lower nu followed by growth of all radii with FIRE relaxation.
+/// Every generation parameter, the achieved nu and quality figures are
+/// stored as attributes. Throws InputError for bad or unreachable requests
+/// (the message gives the estimate of the highest reachable nu) and for runs
+/// that do not converge within their step budget; nothing is written.
+Packing generate_packing(const PackingSpec& spec);
+
+/// Relative tolerance on the achieved packing fraction of a generated packing.
+inline constexpr double kNuRelTol = 1e-12;
+
+/// The one identity of a packing: every field of spec that changes the
+/// packing, and the generator version (stored as the "cache_key" attribute).
+std::string packing_key(const PackingSpec& spec);
+
+/// Why p is not the packing spec generates ("" when it is): its recorded key,
+/// N, d, boundary, achieved nu, and (excluded volume) its overlaps.
+std::string packing_mismatch(const Packing& p, const PackingSpec& spec);
+
+/// Random close packing estimate of a size distribution, see rcp.hpp.
+double estimate_rcp(int d, const Distribution& dist);
+
+// ---- quality figures --------------------------------------------------------
+
+/// Relative overlaps are overlap / (r_i + r_j); walls count as r_i. A contact is
+/// a pair closer than (r_i + r_j)(1 + kContactGap).
+inline constexpr double kContactGap = 1e-3;
+/// Number of slabs per axis of the homogeneity check.
+inline constexpr int kSlabs = 10;
+/// Number of size bands (equal shares of particle volume) of the slab check.
+inline constexpr int kSizeBands = 3;
+
+struct PackingQuality {
+  double nu = 0;
+  double max_rel_overlap = 0, mean_rel_overlap = 0;  // mean over overlapping pairs (0 if none)
+  std::uint64_t overlapping_pairs = 0;
+  double mean_contacts = 0;
+  /// Slab packing fraction / mean, worst over slabs and axes: all particles,
+  /// and per size band.
+  double slab_max_dev = 0;
+  std::vector<double> band_slab_max_dev;
+  /// The same deviation expected from counting alone: the standard deviation
+  /// of a slab's nu / mean if the same particles had independent uniform
+  /// centres (each wholly in one slab), sqrt((1 - 1/S) S sum V_i^2) / sum V_i
+  /// for S slabs. A few large particles make it large whatever the generator.
+  double slab_noise = 0;
+  std::vector<double> band_slab_noise;
+  /// slab_nu[axis][slab]
+  std::vector<std::vector<double>> slab_nu;
+  /// Kolmogorov-Smirnov distance of the radii to dist's cdf and its p-value
+  /// (-1 when no distribution was given).
+  double ks_distance = -1, ks_pvalue = -1;
+  std::vector<double> hist_edges, hist_count, hist_expected;  // log-spaced radius bins
+};
+
+/// Overlaps and contacts (unless pairs is false: they cost a contact search),
+/// slab homogeneity and (with dist) the goodness of fit of the radii.
+PackingQuality assess_packing(const Packing& p, const Distribution* dist, bool pairs = true);
+
+/// Distribution recorded in a packing's attributes (dist, alpha, omega,
+/// sigma), or nullptr if the file does not say.
+std::unique_ptr<Distribution> recorded_distribution(const Packing& p);
+
+// ---- random placement (kept for the benchmarks) ------------------------------
+
+struct RandomSpec {
+  int d = 3;
+  std::size_t n = 0;
+  double nu = 0.3;  // packing fraction: total particle volume / box volume
+  Boundary boundary = Boundary::periodic;
+  std::uint64_t seed = 1;
+};
+
+/// Random placement with any distribution (see generate_packing).
+Packing random_packing(const RandomSpec& spec, const Distribution& dist);
+
+}  // namespace hgrid

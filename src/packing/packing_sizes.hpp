@@ -1,0 +1,24 @@
+// Cell sizes for a packing, chosen by the cost model for its own radii.
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "model/cell_sizes.hpp"
+#include "packing/packing.hpp"
+#include "grid/params.hpp"
+
+namespace hgrid {
+
+struct SizeRequest {
+  CellMethod method = CellMethod::optimal;
+  std::optional<int> levels;
+  double q = 1.0;
+};
+
+/// Sizes from the cost model for the packing's radii (an empirical
+/// distribution) and its packing fraction, ready for GridParams: strictly
+/// increasing (collapsed levels merged) and the last holding the largest particle.
+std::vector<double> model_sizes(const Packing& p, const SizeRequest& r, Search search, double K);
+
+}  // namespace hgrid

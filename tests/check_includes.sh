@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# The include order of the stages: a file below src/<stage>/ includes only
+# from its own stage and the stages before it (grid, model, packing, io, dpm,
+# experiment); another stage's detail/ is never included. Usage: check_includes.sh SRC_ROOT
+set -euo pipefail
+root="${1:-.}"
+stages=(grid model packing io dpm experiment)
+rank() { local i; for i in "${!stages[@]}"; do [ "${stages[$i]}" = "$1" ] && { echo "$i"; return; }; done; echo -1; }
+bad=0
+for s in "${stages[@]}"; do
+  own=$(rank "$s")
+  while IFS= read -r -d '' f; do
+    while IFS= read -r inc; do
+      target=${inc%%/*}
+      r=$(rank "$target")
+      if [ "$r" -lt 0 ]; then
+        echo "$f: includes \"$inc\", which is in no stage"; bad=1
+      elif [ "$r" -gt "$own" ]; then
+        echo "$f: includes \"$inc\" of the later stage $target"; bad=1
+      elif [ "$target" != "$s" ] && [[ "$inc" == */detail/* ]]; then
+        echo "$f: includes \"$inc\", an internal header of stage $target"; bad=1
+      fi
+    done < <(sed -n 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*"\([^"]*\)".*/\1/p' "$f")
+  done < <(find "$root/src/$s" -name '*.[ch]pp' -print0)
+done
+# The tool and the benchmarks use public headers only.
+while IFS= read -r -d '' f; do
+  if grep -E '^[[:space:]]*#[[:space:]]*include[[:space:]]*"[a-z]+/detail/' "$f" | grep -vq '"bench/detail/'; then
+    echo "$f: includes a stage's internal header"; bad=1
+  fi
+done < <(find "$root/src/cli" "$root/bench" -maxdepth 1 -name '*.[ch]pp' -print0)
+if [ "$bad" -ne 0 ]; then echo "include order: FAILED"; exit 1; fi
+echo "include order: OK (${stages[*]})"
