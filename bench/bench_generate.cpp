@@ -1,4 +1,4 @@
-// Packing generation at the paper's scale (issue 7's targets), 3D periodic:
+// Packing generation at the paper's scale (the generators' targets), 3D periodic:
 //   random placement, N = 1e6                         (target <= 1 s)
 //   excluded volume, alpha = -3, omega = 100, nu = 0.6 (target <= 2 min, zero overlap)
 //   excluded volume, alpha = 0, omega = 10, nu = 0.6   (target <= 15 min, max rel. overlap <= 1e-4)

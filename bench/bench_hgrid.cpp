@@ -1,5 +1,5 @@
 // Pair finding on random-centre packings: 3D, periodic, alpha = -3,
-// omega = 100, nu = 0.6 (issue 2's targets). HGrid with the model's optimal
+// omega = 100, nu = 0.6 (the pair-finding targets). HGrid with the model's optimal
 // Top-Down sizes (a new grid per iteration, and one grid rebuilt in place)
 // vs the single-level linked cell vs brute force.
 //

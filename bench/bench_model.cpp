@@ -1,4 +1,4 @@
-// Cost-model timings (issue 3 targets): optimal sizes for one (alpha, omega, L)
+// Cost-model timings: optimal sizes for one (alpha, omega, L)
 // <= 5 ms; L* search <= 50 ms. Figure data: time `hgrid modelfigs`.
 #include <benchmark/benchmark.h>
 

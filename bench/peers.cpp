@@ -1,4 +1,4 @@
-// hgridlab against its peers (issue 6): the HGrid vs the single-level linked
+// hgridlab against its peers: the HGrid vs the single-level linked
 // cell, CGAL box_intersection_d and LAMMPS `neighbor multi` / `bin`, on the
 // figure-11 packing (3D, periodic, alpha = -3, omega = 100, nu = 0.6,
 // excluded volume). Every tool must find the same number of pairs (distance

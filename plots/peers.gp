@@ -21,5 +21,5 @@ if (!exists("tools")) tools = "lammps_multi lammps_bin cgal"
 rows(t) = sprintf("< awk -F, 'NR == 1 || ($4 == \"%s\" && $3 == \"%s\")' '%s'", t, placement, in)
 plot for [i=1:words(tools)] rows(word(tools,i)) using "nu":"ratio_vs_hgrid" \
        with linespoints lw 2 pt 7 lc i title word(tools,i) noenhanced, \
-     10 with lines lw 2 lc rgb 'gray30' dt 4 title 'target for LAMMPS multi (10x, issue 6)', \
+     10 with lines lw 2 lc rgb 'gray30' dt 4 title 'target for LAMMPS multi (10x)', \
      1 with lines lc rgb 'black' dt 2 title 'hgridlab'

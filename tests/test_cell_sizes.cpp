@@ -16,7 +16,7 @@ namespace {
 constexpr double kDominanceRelTol = 1e-9;   // optimum may tie another method to rounding
 constexpr double kRobustRelTol = 1e-7;      // optimum from random starts
 constexpr double kRatioRelTol = 1e-9;       // m_{h+1} / m_h = q
-constexpr double kPaperAbsTol = 0.05;       // MODEL.md section 3 values
+constexpr double kPaperAbsTol = 0.05;       // docs/MODEL.md section 3 values
 
 const CellMethod kMethods[] = {CellMethod::linear, CellMethod::exponential, CellMethod::constant,
                                CellMethod::optimal};
@@ -53,7 +53,7 @@ TEST(CellSize, ConstantRatioHoldsEveryLevel) {
 }
 
 TEST(CellSize, PaperValuesUniformOmega100) {
-  // MODEL.md section 3: q = 1, Top-Down, at its best L: about 29.5 (from 74.3).
+  // docs/MODEL.md section 3: q = 1, Top-Down, at its best L: about 29.5 (from 74.3).
   const auto c = choose_cell_sizes(PowerLaw(0.0, 100.0), ModelParams{}, CellMethod::constant);
   EXPECT_NEAR(c.model.T_over_N, 29.5, kPaperAbsTol) << "L* = " << c.levels;
 }

@@ -232,7 +232,7 @@ TEST(Generate, RcpEstimate) {
     // Equal sizes in two classes pack as one.
     EXPECT_NEAR(virtual_packing_density({{2, 0.3}, {2, 0.7}}, beta), beta, 1e-12);
   }
-  // The reference: about 0.8 for 3-D alpha = -3, omega = 100.
+  // The generators' stated reference: about 0.8 for 3-D alpha = -3, omega = 100.
   const double wide = estimate_rcp(3, PowerLaw(-3, 100));
   EXPECT_NEAR(wide, 0.7803, kRcpRegressionTol);
   EXPECT_LT(wide, 1 - (1 - kMonoRcp3) * (1 - kMonoRcp3));  // here below the two-scale limit

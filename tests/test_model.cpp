@@ -1,4 +1,4 @@
-// The cost model: check values of MODEL.md section 3, closed forms against
+// The cost model: check values of docs/MODEL.md section 3, closed forms against
 // quadrature, continuity, invariance, gradient, bad inputs.
 #include <gtest/gtest.h>
 
@@ -16,7 +16,7 @@ namespace {
 constexpr double kExactRelTol = 1e-12;
 constexpr double kQuadRelTol = 1e-8;        // model through quadrature vs closed forms
 constexpr double kSingularRelTol = 1e-8;    // alpha = -3 +- 1e-9
-constexpr double kPaperAbsTol = 0.05;       // MODEL.md check values are quoted to 0.1
+constexpr double kPaperAbsTol = 0.05;       // docs/MODEL.md check values are quoted to 0.1
 constexpr double kGradRelTol = 1e-5;        // analytic vs central differences
 
 double rel(double a, double b) { return std::fabs(a - b) / std::max(std::fabs(b), 1e-300); }
@@ -42,7 +42,7 @@ std::vector<double> exp_sizes(double omega, int L, double rmin = 1.0) {
 }  // namespace
 
 TEST(Model, MonodisperseOneLevel3D) {
-  const double expected = 13.5 * 6.0 * 0.7 / M_PI + 0.2 * 14.0;  // MODEL.md section 3: 20.85
+  const double expected = 13.5 * 6.0 * 0.7 / M_PI + 0.2 * 14.0;  // docs/MODEL.md section 3: 20.85
   const ModelParams p;
   EXPECT_LT(rel(evaluate_model(PowerLaw(-3.0, 1.0), p, {2.0}).T_over_N, expected), kExactRelTol);
   EXPECT_LT(rel(evaluate_model(Empirical({1.0, 1.0, 1.0}), p, {2.0}).T_over_N, expected), kExactRelTol);
@@ -61,7 +61,7 @@ TEST(Model, MonodisperseOneLevel2D) {
 
 TEST(Model, SingleLevelUniformOmega100) {
   const auto r = evaluate_model(PowerLaw(0.0, 100.0), ModelParams{}, {200.0});
-  EXPECT_NEAR(r.T_over_N, 74.3, kPaperAbsTol);  // MODEL.md section 3
+  EXPECT_NEAR(r.T_over_N, 74.3, kPaperAbsTol);  // docs/MODEL.md section 3
   EXPECT_LT(rel(r.T_over_N, r.T_cd_over_N + 0.2 * r.T_ca_over_N), kExactRelTol);
 }
 
@@ -95,7 +95,7 @@ TEST(Model, ClosedFormsAgreeWithQuadrature) {
 }
 
 TEST(Model, ContinuousAcrossSingularExponent) {
-  // alpha = -3 makes the k = 2 moment a logarithm in 3D (MODEL.md section 5).
+  // alpha = -3 makes the k = 2 moment a logarithm in 3D (docs/MODEL.md section 5).
   for (double omega : {1.0 + 1e-9, 2.0, 100.0, 1e6}) {
     const auto s = exp_sizes(omega, 6);
     const double T = evaluate_model(PowerLaw(-3.0, omega), ModelParams{}, s).T_over_N;

@@ -1,4 +1,4 @@
-// The work an HGrid query did, in the paper's terms (MODEL.md section 1).
+// The work an HGrid query did, in the paper's terms (docs/MODEL.md section 1).
 #pragma once
 #include <cstdint>
 #include <vector>

@@ -208,7 +208,7 @@ class HGrid {
   };
   StencilRows stencil_rows(const detail::Level<D>& L) const;
   /// Number of cells of the same-level half stencil of the non-empty cell
-  /// with coordinates c, key and bucket b (MODEL.md section 1; interior: c is
+  /// with coordinates c, key and bucket b (docs/MODEL.md section 1; interior: c is
   /// on neither the first nor the last cell of any axis); calls
   /// add(begin, end) with the particles of its cells, a row of cells at a
   /// time where the level allows it (a range may be empty).

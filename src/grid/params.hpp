@@ -8,7 +8,7 @@
 
 namespace hgrid {
 
-/// Cross-level search direction (MODEL.md section 1): Top-Down tests a
+/// Cross-level search direction (docs/MODEL.md section 1): Top-Down tests a
 /// particle against the levels below its own, Bottom-Up against those above.
 enum class Search { top_down, bottom_up };
 

@@ -1,4 +1,4 @@
-// LAMMPS export (issue 6): a packing as a LAMMPS data file (atom_style sphere)
+// LAMMPS export: a packing as a LAMMPS data file (atom_style sphere)
 // and input scripts that time LAMMPS's own neighbour-list builds on it, so
 // hgridlab's HGrid can be compared with LAMMPS `neighbor multi` and `bin`.
 #pragma once

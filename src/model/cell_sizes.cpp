@@ -1,4 +1,4 @@
-// Cell-size methods (MODEL.md section 4) and the search for L*.
+// Cell-size methods (docs/MODEL.md section 4) and the search for L*.
 #include "model/cell_sizes.hpp"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Choosing the HGrid cell sizes for a size distribution (MODEL.md section 4;
+// Choosing the HGrid cell sizes for a size distribution (docs/MODEL.md section 4;
 // paper Sect. 5): linear, exponential, constant ratio of particles per cell,
 // optimal; and the best number of levels L* for each.
 #pragma once

@@ -1,4 +1,4 @@
-// Particle-radius distributions behind one interface (MODEL.md section 2).
+// Particle-radius distributions behind one interface (docs/MODEL.md section 2).
 // Every integral the cost model needs is a partial moment
 //   moment(k, a, b) = integral_a^b r^k f(r) dr,
 // so a distribution only has to supply those (closed form where possible,

@@ -1,4 +1,4 @@
-// Data of Figs. 2-10 (MODEL.md section 6) and Fig. 13 (accuracy vs time).
+// Data of Figs. 2-10 (docs/MODEL.md section 6) and Fig. 13 (accuracy vs time).
 #include "model/figures.hpp"
 
 #include <algorithm>
@@ -55,7 +55,7 @@ std::vector<double> omegas() {
 }
 
 ModelParams params(Search s = Search::top_down) {
-  ModelParams p;  // d = 3, nu = 0.7, K = 0.2 (MODEL.md section 3)
+  ModelParams p;  // d = 3, nu = 0.7, K = 0.2 (docs/MODEL.md section 3)
   p.search = s;
   return p;
 }

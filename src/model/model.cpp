@@ -57,7 +57,7 @@ double cross_level_cells(const Distribution& dist, int d, const std::vector<doub
   const double lo = h == 1 ? 0.0 : 0.5 * s[h - 2], hi = 0.5 * s[h - 1];
   const double P = dist.moment(0, lo, hi);
   if (!(P > 0.0)) return 0.0;
-  // Eq. (6): b(j,h) = (1/P_h) int (2 + 2r/s_j)^d f(r) dr, expanded in moments.
+  // Eq. (16): b(j,h) = (1/P_h) int (2 + 2r/s_j)^d f(r) dr, expanded in moments.
   double b = 0.0, binom = 1.0;
   for (int i = 0; i <= d; ++i) {
     b += std::pow(2.0, d) * binom * std::pow(s[j - 1], -i) * dist.moment(i, lo, hi);

@@ -1,4 +1,4 @@
-// The analytic cost model of the HGrid (MODEL.md section 3; paper Sect. 3).
+// The analytic cost model of the HGrid (docs/MODEL.md section 3; paper Sect. 3).
 #pragma once
 #include <vector>
 
@@ -22,7 +22,7 @@ struct ModelResult {
   double T_over_N = 0, T_cd_over_N = 0, T_ca_over_N = 0;  // Eq. (27): T = T_cd + K T_ca
   std::vector<double> sizes;  // s_1..s_L, absolute
   std::vector<double> P;      // fraction of particles at level h, P_h
-  std::vector<double> m;      // particles per cell, m_h (Eq. 1)
+  std::vector<double> m;      // particles per cell, m_h (Eq. 11)
   std::vector<double> T_cd;   // narrow-phase checks of level-h particles / N
   std::vector<double> T_ca;   // cell accesses of level-h particles / N
   int levels() const { return static_cast<int>(sizes.size()); }
@@ -30,12 +30,12 @@ struct ModelResult {
 
 /// T/N and its parts for cell sizes s_1..s_L (same length unit as the radii;
 /// non-decreasing, finite, > 0, s_L >= 2 r_max). Level h owns the radii in
-/// (s_{h-1}/2, s_h/2] with s_0 = 2 r_min (MODEL.md section 1).
+/// (s_{h-1}/2, s_h/2] with s_0 = 2 r_min (docs/MODEL.md section 1).
 ModelResult evaluate_model(const Distribution& dist, const ModelParams& p,
                            const std::vector<double>& sizes);
 
 /// Mean number of level-j cells scanned by a level-h particle, b(j,h)
-/// (Eq. 6; levels 1-based). Returns 0 when level h holds no particles.
+/// (Eq. 16; levels 1-based). Returns 0 when level h holds no particles.
 double cross_level_cells(const Distribution& dist, int d, const std::vector<double>& sizes,
                          int j, int h);
 

@@ -1,6 +1,6 @@
 // Packing generators: radii drawn from a size distribution, a box
 // sized for an exact packing fraction, and centres placed either at random
-// (the cost model's assumption, MODEL.md section 3) or with excluded volume
+// (the cost model's assumption, docs/MODEL.md section 3) or with excluded volume
 // (the paper's measured packings, figures 11-12).
 #pragma once
 #include <cstdint>

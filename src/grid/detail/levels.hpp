@@ -71,7 +71,7 @@ struct Level {
     }
     return c;
   }
-  /// Mapping M(x, h) of MODEL.md section 1, clamped to the grid so that points
+  /// Mapping M(x, h) of docs/MODEL.md section 1, clamped to the grid so that points
   /// on the far box face (walls) or rounded up to A (periodic) stay inside.
   std::int64_t cell_1d(double x, int a) const {
     const double c = std::floor(x / s[a]);

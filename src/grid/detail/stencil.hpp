@@ -1,5 +1,5 @@
 // The same-level search stencil: the own cell plus HALF of the 3^d - 1
-// neighbours, so that no pair of cells is visited twice (MODEL.md section 1).
+// neighbours, so that no pair of cells is visited twice (docs/MODEL.md section 1).
 #pragma once
 #include <array>
 #include <cstdint>

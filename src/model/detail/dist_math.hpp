@@ -1,4 +1,4 @@
-// Numerically stable pieces of the power-law closed forms (MODEL.md section 5).
+// Numerically stable pieces of the power-law closed forms (docs/MODEL.md section 5).
 #pragma once
 #include <cmath>
 #include <limits>

@@ -1,4 +1,4 @@
-// Cost model T/N (MODEL.md section 3): Eqs. (1), (6), (9)-(17), (27).
+// Cost model T/N (docs/MODEL.md section 3): Eqs. (6), (9)-(16), (19)-(22), (27).
 #include "model/detail/model_cost.hpp"
 
 #include <cmath>
@@ -38,7 +38,7 @@ void CostModel::fill_levels(const std::vector<double>& s, std::vector<Level>& lv
     v.s = s[h];
     for (int i = 0; i <= p_.d; ++i) v.M[i] = dist_.moment(i, lo, hi);
     v.P = v.M[0];                              // P_h
-    v.m = c_ * ipow(v.s, p_.d) * v.P;          // m_h = nu s_h^d P_h / V_p, Eq. (1)
+    v.m = c_ * ipow(v.s, p_.d) * v.P;          // m_h = nu s_h^d P_h / V_p, Eq. (11)
     lo = hi;
   }
 }
@@ -53,9 +53,9 @@ double CostModel::total(const std::vector<double>& s) const {
   for (int step = 0; step < L; ++step) {
     const int h = p_.search == Search::top_down ? step : L - 1 - step;
     const Level& v = lv[h];
-    // Own level, Eqs. (13)-(16): N_h [(1/2 + n_c) m_h + K (1 + n_c)].
+    // Own level, Eqs. (12)-(15): N_h [(1/2 + n_c) m_h + K (1 + n_c)].
     T += v.P * ((0.5 + nc_) * v.m + K * (1.0 + nc_));
-    // Cross levels, Eqs. (9)-(12): sum_j (m_j + K) P_h b(j,h).
+    // Cross levels, Eqs. (16), (19)-(22): sum_j (m_j + K) P_h b(j,h).
     for (int i = 0; i <= d; ++i) T += coef_[i] * v.M[i] * S[i];
     double inv = 1.0;
     for (int i = 0; i <= d; ++i, inv /= v.s) S[i] += (v.m + K) * inv;

@@ -294,7 +294,7 @@ std::vector<double> optimise_sizes(const CostModel& cm, int L,
   for (const auto& st : starts) {
     std::vector<double> s = newton(cm, L, st);
     double T = cm.total(s);
-    // A start may already beat what BFGS reached (a line search can stop early).
+    // A start may already beat what Newton reached (a damped step can stop early).
     const double T_st = cm.total(st);
     if (T_st < T) s = st, T = T_st;
     if (!cm.dist().smooth()) T = polish(cm, s);

@@ -11,9 +11,9 @@ namespace hgrid::detail {
 std::vector<double> constant_ratio_sizes(const CostModel& cm, int L, double q);
 
 /// Minimise T over s_1..s_{L-1} from each start (each of length L, ending
-/// in s_L); returns the best sizes found. Gradient-based (GSL BFGS on a
-/// softmax parametrisation of the log-size increments, which keeps the order
-/// constraint), plus a derivative-free coordinate polish for step CDFs.
+/// in s_L); returns the best sizes found. Damped Newton on ln s_k with the
+/// analytic gradient (model_optimize.cpp), plus a derivative-free coordinate
+/// polish for step CDFs.
 std::vector<double> optimise_sizes(const CostModel& cm, int L,
                                    const std::vector<std::vector<double>>& starts);
 
