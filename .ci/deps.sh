@@ -1,23 +1,34 @@
 #!/usr/bin/env bash
-# Installs hgridlab's Debian packages when any is missing (needs root).
-# Extra packages may be named as arguments (CI: `bash .ci/deps.sh clang`).
+# Installs hgridlab's Debian packages when any is missing. As root, missing
+# packages are installed (apt-get). As a normal user, a missing required
+# package stops with the apt-get line to run; a missing optional one (LAMMPS,
+# CGAL, jq) is skipped with a message. Extra packages may be named as
+# arguments (CI: `bash .ci/deps.sh clang`); they count as required.
 set -euo pipefail
-pkgs=("$@"
+required=("$@"
       build-essential cmake libgsl-dev libhdf5-dev libbenchmark-dev libgtest-dev
-      libcli11-dev libtomlplusplus-dev nlohmann-json3-dev gnuplot-nox
-      jq  # plots/calibration.sh (make calibrate-figure) reads the tool's JSON
-      lammps libcgal-dev)  # the peers comparison (bench/peers): LAMMPS at run time, CGAL's headers
-                           # at build time; both optional, each skipped with a message when missing
-missing=()
-for p in "${pkgs[@]}"; do
-  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
-done
-[ ${#missing[@]} -eq 0 ] && exit 0
-echo "installing: ${missing[*]}" >&2
+      libcli11-dev libtomlplusplus-dev nlohmann-json3-dev gnuplot-nox)
+optional=(jq          # plots/calibration.sh (make calibrate-figure) reads the tool's JSON
+          lammps      # bench/peers at run time
+          libcgal-dev)  # bench/peers at build time
+missing() { local p; for p in "$@"; do dpkg -s "$p" >/dev/null 2>&1 || echo "$p"; done; }
+mapfile -t miss_req < <(missing "${required[@]}")
+mapfile -t miss_opt < <(missing "${optional[@]}")
+[ ${#miss_req[@]} -eq 0 ] && [ ${#miss_opt[@]} -eq 0 ] && exit 0
 if [ "$(id -u)" -ne 0 ]; then
-  echo "error: missing packages and not root; run: sudo apt-get install -y ${missing[*]}" >&2
-  exit 1
+  if [ ${#miss_opt[@]} -gt 0 ]; then
+    echo "note: optional packages missing, their parts are skipped: ${miss_opt[*]}" >&2
+  fi
+  if [ ${#miss_req[@]} -gt 0 ]; then
+    echo "error: missing packages and not root; run: sudo apt-get install -y ${miss_req[*]}" >&2
+    exit 1
+  fi
+  exit 0
 fi
+echo "installing: ${miss_req[*]} ${miss_opt[*]}" >&2
 export DEBIAN_FRONTEND=noninteractive
 apt-get update -qq
-apt-get install -y -qq "${missing[@]}"
+apt-get install -y -qq "${miss_req[@]}"
+if [ ${#miss_opt[@]} -gt 0 ]; then
+  apt-get install -y -qq "${miss_opt[@]}" || echo "note: optional packages not installed, their parts are skipped: ${miss_opt[*]}" >&2
+fi

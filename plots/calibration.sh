@@ -15,6 +15,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 hgrid=${HGRID:-build/hgrid}
+if ! command -v jq >/dev/null 2>&1; then
+  echo "plots/calibration.sh: jq is not installed (optional: apt-get install jq); calibration figure skipped" >&2
+  exit 0
+fi
 n=${N:-100000}
 repeat=${REPEAT:-5}
 rounds=${ROUNDS:-3}
