@@ -36,7 +36,7 @@ Scene<D> random_scene(std::size_t n, double nu, double alpha, double omega, Boun
   std::uniform_real_distribution<double> u(0.0, 1.0);
   Scene<D> s;
   double vol = 0;
-  const double vd = D == 2 ? M_PI : 4.0 * M_PI / 3.0;
+  const double vd = unit_ball_volume(D);
   s.spheres.resize(n);
   for (auto& p : s.spheres) {
     p.r = power_law_radius(u(rng), alpha, omega);

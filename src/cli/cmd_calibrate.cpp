@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "cli/common.hpp"
+#include "io/atomic_file.hpp"
 #include "experiment/calibrate.hpp"
 #include "grid/error.hpp"
 
@@ -24,9 +25,7 @@ struct CalibrateArgs {
 /// The samples as CSV with "# key=value" parameter lines (for plots/calibration.gp).
 void write_samples_csv(const std::string& path, const CalibrationRun& run) {
   const Calibration& c = run.result;
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp);
+  write_stream_atomically(path, [&](std::ostream& f) {
     f.precision(10);
     f << "# hgridlab calibration scenes: query wall time (best of repeats) and counts\n"
       << "# K=" << c.K << "\n# K_err=" << c.K_err << "\n# c0=" << c.c0 << "\n# c_cell=" << c.c_cell
@@ -43,9 +42,7 @@ void write_samples_csv(const std::string& path, const CalibrationRun& run) {
         << ',' << s.repeats << ',' << C + 0.2 * A << ',' << C + c.K * A << ','
         << c.c0 * double(s.n) + c.c_cell * A + c.c_test * C << "\n";
     }
-    if (!f) throw InputError("csv", "cannot write '" + tmp + "'");
-  }
-  std::rename(tmp.c_str(), path.c_str());
+  }, "csv");
 }
 
 void run(const CalibrateArgs& a) {

@@ -1,5 +1,6 @@
 // `hgrid model` (the analytic cost model for one distribution) and
 // `hgrid modelfigs` (the data behind the paper's Figs. 2-10).
+#include <filesystem>
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -8,6 +9,7 @@
 #include <sstream>
 
 #include "cli/common.hpp"
+#include "io/atomic_file.hpp"
 #include "experiment/calibration.hpp"
 #include "model/cell_sizes.hpp"
 #include "model/figures.hpp"
@@ -130,7 +132,11 @@ void register_model_commands(CLI::App& app) {
   auto* figs = app.add_subcommand("modelfigs", "Write the data of the paper's Figs. 2-10 (and 13) as CSV");
   figs->add_option("--out", *f, "output directory")->capture_default_str();
   figs->add_option("--only", *only, "comma-separated figure numbers, e.g. 4,9 (default: all)");
-  figs->callback([f, only] { detail::write_model_figures(*f, *only, std::cerr); });
+  figs->callback([f, only] {
+    std::filesystem::create_directories(*f);
+    write_model_figures([&](const std::string& name, const std::string& csv) { write_text_atomically(*f + "/" + name, csv); },
+                        *only, std::cerr);
+  });
 }
 
 }  // namespace hgrid::cli

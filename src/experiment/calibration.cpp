@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "grid/error.hpp"
+#include "io/atomic_file.hpp"
 
 namespace hgrid {
 namespace {
@@ -59,17 +60,7 @@ void save_calibration(const Calibration& c, const std::string& path) {
   j["preset"] = c.preset;
   const std::filesystem::path target(path);
   if (target.has_parent_path()) std::filesystem::create_directories(target.parent_path());
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp);
-    out << j.dump(2) << "\n";
-    out.close();
-    if (!out) {
-      std::filesystem::remove(tmp);
-      throw InputError("calibration", "cannot write '" + tmp + "'");
-    }
-  }
-  std::filesystem::rename(tmp, target);
+  write_text_atomically(path, j.dump(2) + "\n", "calibration");
 }
 
 Calibration load_calibration(const std::string& path) {

@@ -20,6 +20,8 @@
 #include "model/model.hpp"
 #include "io/provenance.hpp"
 #include "experiment/packing_cache.hpp"
+#include "io/atomic_file.hpp"
+#include "packing/progress.hpp"
 
 namespace hgrid::dpm {
 namespace {
@@ -68,18 +70,15 @@ RunResult simulate(const DpmScene& sc, const Packing& p, const std::vector<doubl
   const auto t0 = Clock::now();
   r.t.push_back(0);
   r.E.push_back(sim->kinetic_energy());
-  std::uint64_t done = 0, next_report = sc.steps / 10;
+  Progress bar(progress, "  " + label, "steps");
+  std::uint64_t done = 0;
   while (done < sc.steps) {
     const std::uint64_t n = std::min(sc.sample_every, sc.steps - done);
     sim->run(n);
     done += n;
     r.t.push_back(sim->time());
     r.E.push_back(sim->kinetic_energy());
-    if (progress && done >= next_report) {
-      std::cerr << "  " << label << ": step " << done << "/" << sc.steps << ", "
-                << std::chrono::duration<double>(Clock::now() - t0).count() << " s\n";
-      next_report += std::max<std::uint64_t>(1, sc.steps / 10);
-    }
+    bar.count(static_cast<double>(done), static_cast<double>(sc.steps));
   }
   r.seconds_total = std::chrono::duration<double>(Clock::now() - t0).count();
   r.stats = sim->stats();
@@ -107,12 +106,6 @@ nlohmann::json run_json(const RunResult& r) {
           {"checks_per_particle_initial", r.checks_per_n},
           {"accesses_per_particle_initial", r.accesses_per_n},
           {"energy_final_over_initial", r.E.back() / r.E.front()}};
-}
-
-void write_atomic(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  std::ofstream(tmp) << text;
-  std::filesystem::rename(tmp, path);
 }
 
 std::string fmt(double x, int prec) {
@@ -143,8 +136,7 @@ void run_dpm_scene(const std::string& path, const std::string& scale, const RunO
   const PowerLaw dist(sc.initial.alpha, sc.initial.omega);
   const ModelParams mp{sc.initial.d, sc.initial.nu, sc.K, Search::top_down};
   const SizeChoice choice = choose_cell_sizes(dist, mp, sc.method);
-  std::vector<double> opt_sizes = choice.sizes;
-  opt_sizes.back() = std::max(opt_sizes.back(), 2 * sc.initial.omega);
+  std::vector<double> opt_sizes = sizes_for_grid(choice.sizes, 2 * sc.initial.omega);
   const std::vector<double> lc_sizes{sc.reference_size};
   const double model_opt = evaluate_model(dist, mp, opt_sizes).T_over_N;
   const double model_lc = evaluate_model(dist, mp, lc_sizes).T_over_N;
@@ -216,7 +208,7 @@ void run_dpm_scene(const std::string& path, const std::string& scale, const RunO
 
   std::filesystem::create_directories(opt.results_dir);
   const std::string stem = opt.results_dir + "/" + sc.name + (scale == "default" ? "" : "-" + scale);
-  write_atomic(stem + ".json", out.dump(2) + "\n");
+  write_text_atomically(stem + ".json", out.dump(2) + "\n");
   std::ostringstream csv;
   csv << "# " << sc.name << " " << scale << ": kinetic energy; Haff fit t0 = " << haff.t0 << ", E0 = " << haff.E0
       << "\nt,E_optimal,E_linked_cell,E_haff\n";
@@ -225,7 +217,7 @@ void run_dpm_scene(const std::string& path, const std::string& scale, const RunO
     const double h = haff.E0 / ((1 + a.t[i] / haff.t0) * (1 + a.t[i] / haff.t0));
     csv << a.t[i] << "," << a.E[i] << "," << (i < b.E.size() ? b.E[i] : NAN) << "," << h << "\n";
   }
-  write_atomic(stem + "-energy.csv", csv.str());
+  write_text_atomically(stem + "-energy.csv", csv.str());
   std::ostringstream row;
   row << "| " << scale << " | " << p.size() << " | " << sc.steps << " | " << a.sizes.size() << " levels: ";
   for (std::size_t i = 0; i < a.sizes.size(); ++i) row << (i ? ", " : "") << fmt(a.sizes[i], 1);
@@ -234,7 +226,7 @@ void run_dpm_scene(const std::string& path, const std::string& scale, const RunO
       << fmt(out["measured_count_ratio"].get<double>(), 1) << " | "
       << fmt(out["speedup_contact_detection"].get<double>(), 1) << " | "
       << fmt(out["speedup_total"].get<double>(), 1) << " (paper 9.9) | " << fmt(haff.r2, 4) << " |\n";
-  write_atomic(stem + "-row.md", row.str());
+  write_text_atomically(stem + "-row.md", row.str());
 
   if (json) std::cout << out.dump(2) << "\n";
   else

@@ -6,15 +6,14 @@
 #include <toml++/toml.h>
 
 #include "experiment/calibration.hpp"
-#include "experiment/detail/toml_keys.hpp"
+#include "experiment/detail/scene_reader.hpp"
 
 #include "grid/error.hpp"
 
 namespace hgrid::dpm {
 namespace {
 
-const std::set<std::string> kSections = {"initial", "contact", "effects", "run", "grids"};
-const std::map<std::string, std::set<std::string>> kKeys = {
+const detail::SceneSections kSections = {
     {"initial", {"d", "n", "nu", "alpha", "omega", "boundary", "placement", "seed", "speed", "velocity_seed"}},
     {"contact", {"contact_time", "restitution", "dt_over_tc", "density"}},
     {"effects", {"friction", "mu", "friction_damping", "gravity"}},
@@ -23,77 +22,28 @@ const std::map<std::string, std::set<std::string>> kKeys = {
 };
 
 using detail::check_keys;
-
-const toml::table& section(const toml::table& root, const std::string& name) {
-  static const toml::table empty;
-  const auto* t = root[name].as_table();
-  if (root.contains(name) && !t) throw InputError(name, "must be a table");
-  return t ? *t : empty;
-}
-
-double number(const toml::table& t, const std::string& sec, const std::string& key, double def) {
-  const auto* n = t.get(key);
-  if (!n) return def;
-  if (auto v = n->value<double>()) return *v;
-  throw InputError(sec + "." + key, "must be a number");
-}
-std::uint64_t count(const toml::table& t, const std::string& sec, const std::string& key, std::uint64_t def) {
-  const auto* n = t.get(key);
-  if (!n) return def;
-  auto v = n->value<std::int64_t>();
-  if (!v || *v < 0) throw InputError(sec + "." + key, "must be an integer >= 0");
-  return static_cast<std::uint64_t>(*v);
-}
-std::string text(const toml::table& t, const std::string& sec, const std::string& key, const std::string& def) {
-  const auto* n = t.get(key);
-  if (!n) return def;
-  if (auto v = n->value<std::string>()) return *v;
-  throw InputError(sec + "." + key, "must be a string");
-}
-bool flag(const toml::table& t, const std::string& sec, const std::string& key, bool def) {
-  const auto* n = t.get(key);
-  if (!n) return def;
-  if (auto v = n->value<bool>()) return *v;
-  throw InputError(sec + "." + key, "must be true or false");
-}
+using detail::count;
+using detail::flag;
+using detail::number;
+using detail::section;
+using detail::text;
 
 }  // namespace
 
 DpmScene load_dpm_scene(const std::string& path, const std::string& scale) {
-  toml::table root;
-  try {
-    root = toml::parse_file(path);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream msg;
-    msg << e.description() << " (line " << e.source().begin.line << ")";
-    throw InputError(path, msg.str());
-  }
-  if (scale != "smoke" && scale != "default" && scale != "paper")
-    throw InputError("--scale", "must be smoke, default or paper");
-  std::set<std::string> top = kSections;
-  top.insert({"name", "description", "kind", "scale"});
+  detail::check_scale_name(scale);
+  toml::table root = detail::read_scene_file(path).root;
+  std::set<std::string> top{"name", "description", "kind", "scale"};
+  for (const auto& [name, keys] : kSections) top.insert(name);
   check_keys(root, "", top);
-  for (const auto& s : kSections) check_keys(section(root, s), s + ".", kKeys.at(s));
-  // Scale overrides: [scale.<scale>.<section>] keys replace the section's.
-  if (const auto* scales = root["scale"].as_table()) {
-    check_keys(*scales, "scale.", {"smoke", "default", "paper"});
-    for (const auto& [sk, sv] : *scales) {
-      const auto* st = sv.as_table();
-      if (!st) throw InputError("scale." + std::string(sk.str()), "must be a table");
-      check_keys(*st, "scale." + std::string(sk.str()) + ".", kSections);
-      for (const auto& [name, sub] : *st) {
-        const auto* subt = sub.as_table();
-        const std::string where = "scale." + std::string(sk.str()) + "." + std::string(name.str());
-        if (!subt) throw InputError(where, "must be a table");
-        check_keys(*subt, where + ".", kKeys.at(std::string(name.str())));
-      }
+  // [scale.<scale>.<section>] keys replace the section's.
+  for (const auto& [name, keys] : kSections) {
+    check_keys(section(root, name), name + ".", keys);
+    if (const auto* over = detail::scale_section(root, scale, name, kSections)) {
+      if (!root.contains(name)) root.insert(name, toml::table{});
+      auto* base = root[name].as_table();
+      for (const auto& [k, v] : *over) base->insert_or_assign(k.str(), v);
     }
-    if (const auto* st = (*scales)[scale].as_table())
-      for (const auto& [name, sub] : *st) {
-        if (!root.contains(name.str())) root.insert(name.str(), toml::table{});
-        auto* base = root[name.str()].as_table();
-        for (const auto& [k, v] : *sub.as_table()) base->insert_or_assign(k.str(), v);
-      }
   }
 
   DpmScene s;

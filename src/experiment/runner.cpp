@@ -17,6 +17,7 @@
 #include "grid/hgrid.hpp"
 #include "model/model.hpp"
 #include "packing/packing_sizes.hpp"
+#include "packing/progress.hpp"
 #include "experiment/packing_cache.hpp"
 
 namespace hgrid {
@@ -69,9 +70,8 @@ PointResult run_point(const Scene& scene, const ScenePoint& point, const RunOpti
   if (scene.record.model) {
     // The model for the same radii, packing fraction and (fitted) sizes.
     const Empirical dist(p.radii);
-    std::vector<double> s = r.sizes;
-    s.back() = std::max(s.back(), 2 * dist.r_max());
-    const ModelResult m = evaluate_model(dist, ModelParams{p.d, r.nu_achieved, scene.grid.K, point.search}, s);
+    const ModelResult m = evaluate_model(dist, ModelParams{p.d, r.nu_achieved, scene.grid.K, point.search},
+                                         sizes_for_grid(r.sizes, 2 * dist.r_max()));
     r.model_T_over_N = m.T_over_N;
     r.model_T_cd_over_N = m.T_cd_over_N;
     r.model_T_ca_over_N = m.T_ca_over_N;
@@ -134,7 +134,7 @@ std::vector<PointResult> run_scene(const Scene& scene, const RunOptions& opt) {
   std::atomic<std::size_t> next{0};
   std::size_t finished = 0;
   std::exception_ptr failure;
-  const auto t_start = Clock::now();
+  Progress progress(opt.progress, "hgrid run " + scene.name, "points");
   auto worker = [&] {
     for (;;) {
       const std::size_t g = next++;
@@ -151,13 +151,8 @@ std::vector<PointResult> run_scene(const Scene& scene, const RunOptions& opt) {
           jout << nlohmann::json{{"source", scene.source}, {"result", detail::result_to_json(r)}}.dump() << "\n";
           jout.flush();
           ++finished;
-          if (opt.progress) {
-            const double el = since(t_start);
-            const double rate = finished / el;
-            const double eta = (todo.size() - finished) / rate;
-            std::fprintf(stderr, "hgrid run %s: %zu/%zu points (%.0f%%), %.3g points/s, ETA %.0f s\n",
-                         scene.name.c_str(), finished, todo.size(), 100.0 * finished / todo.size(), rate, eta);
-          }
+          progress.count(static_cast<double>(finished), static_cast<double>(todo.size()),
+                         std::to_string(finished) + "/" + std::to_string(todo.size()));
         } catch (...) {
           std::lock_guard<std::mutex> lock(mu);
           if (!failure) failure = std::current_exception();

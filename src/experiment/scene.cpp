@@ -9,7 +9,7 @@
 #include <toml++/toml.h>
 
 #include "experiment/calibration.hpp"
-#include "experiment/detail/toml_keys.hpp"
+#include "experiment/detail/scene_reader.hpp"
 
 #include "grid/error.hpp"
 
@@ -17,40 +17,11 @@ namespace hgrid {
 namespace {
 
 using detail::check_keys;
+using detail::numbers;
+using detail::strings;
 
-double as_number(const toml::node& n, const std::string& key) {
-  if (auto v = n.value<double>()) return *v;
-  throw InputError(key, "must be a number");
-}
-
-/// A scalar or an array of numbers, as a list.
-std::vector<double> numbers(const toml::node& n, const std::string& key) {
-  std::vector<double> out;
-  if (const auto* a = n.as_array()) {
-    for (const auto& e : *a) out.push_back(as_number(e, key));
-  } else {
-    out.push_back(as_number(n, key));
-  }
-  if (out.empty()) throw InputError(key, "must not be empty");
-  for (double v : out)
-    if (!std::isfinite(v)) throw InputError(key, "must be finite");
-  return out;
-}
-
-std::vector<std::string> strings(const toml::node& n, const std::string& key) {
-  std::vector<std::string> out;
-  auto one = [&](const toml::node& e) {
-    if (auto s = e.value<std::string>()) return *s;
-    throw InputError(key, "must be a string or a list of strings");
-  };
-  if (const auto* a = n.as_array()) {
-    for (const auto& e : *a) out.push_back(one(e));
-  } else {
-    out.push_back(one(n));
-  }
-  if (out.empty()) throw InputError(key, "must not be empty");
-  return out;
-}
+const detail::SceneSections kSections = {
+    {"packings", {"d", "n", "nu", "alpha", "omega", "sigma", "dist", "boundary", "placement", "seeds", "equilibrate"}}};
 
 /// The packing lists of a scene, before expansion.
 struct PackingLists {
@@ -60,8 +31,7 @@ struct PackingLists {
 };
 
 void read_packings(const toml::table& t, PackingLists& p, const std::string& where) {
-  check_keys(t, where, {"d", "n", "nu", "alpha", "omega", "sigma", "dist", "boundary", "placement", "seeds",
-                        "equilibrate"});
+  check_keys(t, where, kSections.at("packings"));
   for (const auto& [k, v] : t) {
     const std::string key(k.str());
     const std::string name = where + key;
@@ -143,25 +113,10 @@ void read_record(const toml::table& t, SceneRecord& r) {
   }
 }
 
-/// The file's text and its parsed table; InputError("scene", ...) if unreadable.
-std::pair<std::string, toml::table> parse_scene_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError("scene", "cannot open '" + path + "'");
-  std::stringstream buf;
-  buf << in.rdbuf();
-  try {
-    return {buf.str(), toml::parse(buf.str(), path)};
-  } catch (const toml::parse_error& e) {
-    std::ostringstream msg;
-    msg << e.description() << " at line " << e.source().begin.line;
-    throw InputError("scene", msg.str() + " in " + path);
-  }
-}
-
 }  // namespace
 
 std::string scene_kind(const std::string& path) {
-  const auto [text, root] = parse_scene_file(path);
+  const toml::table root = detail::read_scene_file(path).root;
   const std::string kind = root["kind"].value_or(std::string("contact"));
   if (kind != "contact" && kind != "dpm") throw InputError("kind", "must be 'contact' or 'dpm' (got '" + kind + "')");
   return kind;
@@ -169,8 +124,10 @@ std::string scene_kind(const std::string& path) {
 
 Scene load_scene(const std::string& path, const std::string& scale) {
   Scene s;
-  toml::table root;
-  std::tie(s.source, root) = parse_scene_file(path);
+  detail::check_scale_name(scale);
+  detail::SceneFile file = detail::read_scene_file(path);
+  const toml::table& root = file.root;
+  s.source = std::move(file.text);
   s.scale = scale;
   check_keys(root, "", {"name", "description", "kind", "packings", "grid", "record", "scale"});
   if (root["kind"].value_or(std::string("contact")) != "contact")
@@ -186,15 +143,8 @@ Scene load_scene(const std::string& path, const std::string& scale) {
   const auto* packings = root["packings"].as_table();
   if (!packings) throw InputError("packings", "a [packings] table is required");
   read_packings(*packings, lists, "packings.");
-  if (const auto* scales = root["scale"].as_table()) {
-    check_keys(*scales, "scale.", {"smoke", "default", "paper"});
-    if (const auto* sc = (*scales)[scale].as_table()) {
-      check_keys(*sc, "scale." + scale + ".", {"packings"});
-      if (const auto* sp = (*sc)["packings"].as_table()) read_packings(*sp, lists, "scale." + scale + ".packings.");
-    }
-  }
-  if (scale != "smoke" && scale != "default" && scale != "paper")
-    throw InputError("scale", "must be smoke, default or paper (got '" + scale + "')");
+  if (const auto* sp = detail::scale_section(root, scale, "packings", kSections))
+    read_packings(*sp, lists, "scale." + scale + ".packings.");
   check_lists(lists);
   if (const auto* g = root["grid"].as_table()) read_grid(*g, s.grid);
   if (const auto* r = root["record"].as_table()) read_record(*r, s.record);
@@ -221,7 +171,7 @@ Scene load_scene(const std::string& path, const std::string& scale) {
                         p.omega = omega;
                         p.sigma = sigma;
                         p.boundary = parse_boundary(bnd);
-                        p.placement = plc == "random" ? Placement::random : Placement::excluded;
+                        p.placement = parse_placement(plc);
                         p.seed = static_cast<std::uint64_t>(seed);
                         p.equilibrate = lists.equilibrate;
                         pt.search = search;

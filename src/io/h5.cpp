@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "grid/error.hpp"
+#include "io/atomic_file.hpp"
 
 namespace hgrid::detail {
 
@@ -121,6 +122,19 @@ void h5_write_strings(hid_t file, const std::string& name, const std::vector<std
   H5Handle ds{H5Dcreate2(file, name.c_str(), t.id, sp.id, H5P_DEFAULT, dcpl.id, H5P_DEFAULT), H5Dclose};
   if (ds.id < 0 || (n > 0 && H5Dwrite(ds.id, t.id, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()) < 0))
     throw std::runtime_error("HDF5: cannot write dataset " + name);
+}
+
+void h5_write_file(const std::string& path, const std::function<void(hid_t file)>& fill) {
+  std::lock_guard<std::recursive_mutex> lock(h5_mutex());
+  h5_silence();
+  write_file_atomically(path, [&](const std::string& tmp) {
+    H5Handle fcpl{H5Pcreate(H5P_FILE_CREATE), H5Pclose};
+    H5Pset_obj_track_times(fcpl.id, false);  // root group: no time stamps either
+    H5Handle f{H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, fcpl.id, H5P_DEFAULT), H5Fclose};
+    if (f.id < 0) throw InputError("out", "cannot create '" + tmp + "'");
+    fill(f.id);
+    if (H5Fflush(f.id, H5F_SCOPE_GLOBAL) < 0) throw InputError("out", "HDF5 write failed for '" + path + "' (disk full?)");
+  });
 }
 
 }  // namespace hgrid::detail

@@ -2,12 +2,9 @@
 #pragma once
 #include <hdf5.h>
 
-#include <atomic>
+#include <functional>
 #include <cstdint>
-#include <cstdio>
-#include <filesystem>
 #include <stdexcept>
-#include <unistd.h>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -48,24 +45,6 @@ void h5_write_strings(hid_t file, const std::string& name, const std::vector<std
 /// Creates `path` through a temporary file: fill(file_id) writes the content,
 /// then the file is closed and renamed onto `path`. Nothing is left at `path`
 /// (or at the temporary name) if fill throws.
-template <class Fill>
-void h5_write_file(const std::string& path, Fill&& fill) {
-  std::lock_guard<std::recursive_mutex> lock(h5_mutex());
-  h5_silence();
-  static std::atomic<unsigned> counter{0};
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
-  try {
-    H5Handle fcpl{H5Pcreate(H5P_FILE_CREATE), H5Pclose};
-    H5Pset_obj_track_times(fcpl.id, false);  // root group: no time stamps either
-    H5Handle f{H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, fcpl.id, H5P_DEFAULT), H5Fclose};
-    if (f.id < 0) throw InputError("out", "cannot create '" + tmp + "'");
-    fill(f.id);
-    if (H5Fflush(f.id, H5F_SCOPE_GLOBAL) < 0) throw std::runtime_error("HDF5: flush failed for " + tmp);
-  } catch (...) {
-    std::remove(tmp.c_str());
-    throw;
-  }
-  std::filesystem::rename(tmp, path);
-}
+void h5_write_file(const std::string& path, const std::function<void(hid_t file)>& fill);
 
 }  // namespace hgrid::detail

@@ -10,6 +10,7 @@
 
 #include "grid/error.hpp"
 #include "io/provenance.hpp"
+#include "io/atomic_file.hpp"
 
 namespace hgrid {
 namespace {
@@ -106,21 +107,6 @@ std::string lammps_input(const Packing& p, const LammpsScript& s) {
     << "thermo " << s.builds << "\ntimestep 0.0\n"
     << "run " << s.builds << "\n";
   return o.str();
-}
-
-void write_text_atomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) throw InputError("out", "cannot write " + tmp);
-    f << text;
-    f.flush();
-    if (!f) {
-      std::filesystem::remove(tmp);
-      throw InputError("out", "write failed for " + tmp);
-    }
-  }
-  std::filesystem::rename(tmp, path);
 }
 
 void export_lammps(const std::string& dir, const Packing& p, const LammpsScript& s) {

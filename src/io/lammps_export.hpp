@@ -44,7 +44,4 @@ std::string lammps_input(const Packing& p, const LammpsScript& s);
 /// dir/in.bin.lmp, each under a temporary name then renamed. Creates dir.
 void export_lammps(const std::string& dir, const Packing& p, const LammpsScript& s = {});
 
-/// Writes `text` to `path` through a temporary file and a rename.
-void write_text_atomically(const std::string& path, const std::string& text);
-
 }  // namespace hgrid

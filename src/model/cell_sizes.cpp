@@ -203,4 +203,11 @@ std::vector<double> cost_versus_levels(const Distribution& dist, const ModelPara
   return T;
 }
 
+std::vector<double> sizes_for_grid(std::vector<double> s, double largest_diameter) {
+  if (s.empty()) throw InputError("sizes", "no cell sizes");
+  s.erase(std::unique(s.begin(), s.end(), [](double a, double b) { return !(b > a); }), s.end());
+  s.back() = std::max(s.back(), largest_diameter);
+  return s;
+}
+
 }  // namespace hgrid

@@ -40,6 +40,11 @@ std::vector<double> cell_sizes(const Distribution& dist, const ModelParams& p, C
 SizeChoice choose_cell_sizes(const Distribution& dist, const ModelParams& p, CellMethod method,
                              std::optional<int> levels = std::nullopt, double q = 1.0);
 
+/// Model sizes made ready for GridParams: levels the optimum collapsed onto
+/// each other merged (strictly increasing), and the last size at least
+/// `largest_diameter` despite rounding.
+std::vector<double> sizes_for_grid(std::vector<double> sizes, double largest_diameter);
+
 /// T/N for every L = 1..max_levels by one method (the curves of Figs. 6 and 9).
 std::vector<double> cost_versus_levels(const Distribution& dist, const ModelParams& p,
                                        CellMethod method, int max_levels, double q = 1.0);

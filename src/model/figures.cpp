@@ -18,7 +18,7 @@
 #include "model/cell_sizes.hpp"
 #include "grid/error.hpp"
 
-namespace hgrid::detail {
+namespace hgrid {
 
 namespace {
 constexpr int kOmegaPerDecade = 10;   // Figs. 3-8: omega = 10^(k/10), 1 .. 1000
@@ -32,20 +32,13 @@ const CellMethod kMethods[] = {CellMethod::linear, CellMethod::exponential, Cell
 
 struct Csv {
   std::ostringstream body;
-  std::string path;
-  Csv(const std::string& dir, const std::string& name, const std::string& header) : path(dir + "/" + name) {
+  const FigureSink& out;
+  std::string name;
+  Csv(const FigureSink& o, const std::string& n, const std::string& header) : out(o), name(n) {
     body.precision(10);
     body << "# hgridlab model data for " << name << "\n" << header << "\n";
   }
-  void commit() const {  // atomic: temporary file, then rename
-    const std::string tmp = path + ".tmp";
-    {
-      std::ofstream out(tmp);
-      out << body.str();
-      if (!out) throw std::runtime_error("cannot write " + tmp);
-    }
-    std::filesystem::rename(tmp, path);
-  }
+  void commit() const { out(name, body.str()); }
 };
 
 std::vector<double> omegas() {
@@ -61,7 +54,7 @@ ModelParams params(Search s = Search::top_down) {
 }
 const char* kParamHeader = "# d=3\n# nu=0.7\n# K=0.2";
 
-void fig02(const std::string& dir) {
+void fig02(const FigureSink& dir) {
   Csv c(dir, "fig02-pdf.csv", "# omega=3\n# columns=r/r_min,f(alpha=0),f(-1),f(-2),f(-3)");
   const double a[] = {0.0, -1.0, -2.0, -3.0};
   for (int i = 0; i <= 400; ++i) {
@@ -73,7 +66,7 @@ void fig02(const std::string& dir) {
   c.commit();
 }
 
-void fig03(const std::string& dir) {
+void fig03(const FigureSink& dir) {
   Csv c(dir, "fig03-single-level.csv",
         std::string(kParamHeader) + "\n# L=1 (linked cell), s_1=2 r_max\n# columns=omega,T/N(alpha=0),T/N(-1),T/N(-2),T/N(-3)");
   for (double w : omegas()) {
@@ -86,7 +79,7 @@ void fig03(const std::string& dir) {
 }
 
 /// Figs. 4, 5, 7, 8: T*/N and L* against omega, alpha = 0, -3, TD and BU.
-void fig_best_vs_omega(const std::string& dir, const std::string& name, CellMethod m) {
+void fig_best_vs_omega(const FigureSink& dir, const std::string& name, CellMethod m) {
   Csv c(dir, name,
         std::string(kParamHeader) + "\n# cells=" + to_string(m) +
             (m == CellMethod::constant ? "\n# q=1" : "") +
@@ -103,7 +96,7 @@ void fig_best_vs_omega(const std::string& dir, const std::string& name, CellMeth
   c.commit();
 }
 
-void fig06(const std::string& dir) {
+void fig06(const FigureSink& dir) {
   const PowerLaw f(-3.0, 100.0);
   Csv c(dir, "fig06-constant-q.csv",
         std::string(kParamHeader) + "\n# omega=100\n# alpha=-3\n# search=topdown\n# columns=L,T(q=0.5),T(q=1),T(q=2),T(q=5)");
@@ -126,7 +119,7 @@ void fig06(const std::string& dir) {
   in.commit();
 }
 
-void fig09(const std::string& dir) {
+void fig09(const FigureSink& dir) {
   const PowerLaw f(-3.0, 100.0);
   Csv c(dir, "fig09-methods-vs-L.csv",
         std::string(kParamHeader) + "\n# omega=100\n# alpha=-3\n# search=topdown\n# q=1\n# columns=L,linear,exponential,constant,optimal");
@@ -140,7 +133,7 @@ void fig09(const std::string& dir) {
   c.commit();
 }
 
-void fig10(const std::string& dir) {
+void fig10(const FigureSink& dir) {
   const PowerLaw f(-3.0, 100.0);
   for (CellMethod m : kMethods) {
     const auto ch = choose_cell_sizes(f, params(), m);
@@ -157,7 +150,7 @@ void fig10(const std::string& dir) {
 
 /// Fig. 13: time to choose the sizes (with L*) against the excess of T over
 /// the optimum, every method, a few distributions.
-void fig13(const std::string& dir) {
+void fig13(const FigureSink& dir) {
   Csv c(dir, "fig13-accuracy-time.csv",
         std::string(kParamHeader) + "\n# search=topdown\n# q=1\n# time: wall clock of choose_cell_sizes() with the L* search, one thread"
                                     "\n# columns=method_index,alpha,omega,seconds,T/N,excess_over_optimal,L*");
@@ -185,7 +178,7 @@ void fig13(const std::string& dir) {
 }
 }  // namespace
 
-void write_model_figures(const std::string& dir, const std::string& only, std::ostream& log) {
+void write_model_figures(const FigureSink& dir, const std::string& only, std::ostream& log) {
   std::set<int> want;
   if (!only.empty()) {
     std::stringstream ss(only);
@@ -201,7 +194,6 @@ void write_model_figures(const std::string& dir, const std::string& only, std::o
       want.insert(n);
     }
   }
-  std::filesystem::create_directories(dir);
   std::vector<std::pair<int, std::function<void()>>> jobs = {
       {8, [&] { fig_best_vs_omega(dir, "fig08-optimal.csv", CellMethod::optimal); }},
       {7, [&] { fig_best_vs_omega(dir, "fig07-constant.csv", CellMethod::constant); }},
@@ -244,4 +236,4 @@ void write_model_figures(const std::string& dir, const std::string& only, std::o
   }
 }
 
-}  // namespace hgrid::detail
+}  // namespace hgrid

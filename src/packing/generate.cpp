@@ -56,7 +56,7 @@ double draw_radii(const PackingSpec& s, const Distribution& dist, detail::GenRng
   double volume = 0;
   for (auto& r : radii) {
     r = dist.quantile(rng.uniform());
-    volume += detail::unit_ball(s.d) * std::pow(r, s.d);
+    volume += unit_ball_volume(s.d) * std::pow(r, s.d);
   }
   return std::pow(volume / s.nu, 1.0 / s.d);
 }
@@ -89,7 +89,7 @@ void place_excluded(const PackingSpec& s, double rcp, detail::GenRng& rng, Packi
   std::vector<std::uint32_t> order(s.n);
   std::iota(order.begin(), order.end(), 0u);
   std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return p.radii[a] > p.radii[b]; });
-  detail::Progress progress(s.progress, "excluded-volume placement (sequential addition)");
+  Progress progress(s.progress, "excluded-volume placement (sequential addition)");
   const std::size_t placed = detail::rsa_place(s.d, s.boundary, p.box, p.radii, order, 1.0, rng, p.positions, progress);
   if (placed == s.n) {
     p.str_attrs["method"] = "rsa";
@@ -103,12 +103,12 @@ void place_excluded(const PackingSpec& s, double rcp, detail::GenRng& rng, Packi
   double scale0 = 1;
   for (int tries = 0;; ++tries) {
     scale0 = std::pow(nu0 / s.nu, 1.0 / s.d);
-    detail::Progress p0(s.progress, "sequential addition at nu = " + brief(nu0));
+    Progress p0(s.progress, "sequential addition at nu = " + brief(nu0));
     if (detail::rsa_place(s.d, s.boundary, p.box, p.radii, order, scale0, rng, p.positions, p0) == s.n) break;
     if (tries == 5) throw InputError("nu", unreachable(s, rcp, "sequential addition stalls even at nu = " + brief(nu0)));
     nu0 *= 0.8;
   }
-  detail::Progress progress2(s.progress, "growth + FIRE relaxation");
+  Progress progress2(s.progress, "growth + FIRE relaxation");
   detail::RelaxStats st;
   if (!detail::grow_and_relax(s.d, s.boundary, p.box, p.radii, scale0, p.positions, progress2, st)) {
     const double reached = s.nu * std::pow(std::pow(detail::kGrowthStep, st.growth_steps) * scale0, s.d);
@@ -180,7 +180,7 @@ Packing generate_packing(const PackingSpec& s) {
   if (s.placement == Placement::random) place_random(s, rng, p);
   else place_excluded(s, rcp, rng, p);
   if (s.equilibrate) {
-    detail::Progress progress(s.progress, "hard-sphere Monte Carlo equilibration");
+    Progress progress(s.progress, "hard-sphere Monte Carlo equilibration");
     p.num_attrs["equilibration_acceptance"] = detail::equilibrate(s.d, s.boundary, p.box, p.radii, p.positions, rng, progress);
     p.num_attrs["equilibration_sweeps"] = detail::kEquilibrationSweeps;
   }

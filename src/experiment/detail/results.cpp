@@ -10,6 +10,7 @@
 #include "io/h5.hpp"
 #include "packing/packing.hpp"
 #include "io/provenance.hpp"
+#include "io/atomic_file.hpp"
 
 namespace hgrid::detail {
 namespace {
@@ -117,9 +118,7 @@ const char* const kNumericColumns[] = {"d", "n", "nu", "nu_achieved", "alpha", "
 const char* const kTextColumns[] = {"dist", "boundary", "placement", "search"};
 
 void write_csv(const std::string& path, const Scene& scene, const std::vector<nlohmann::json>& rows) {
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp);
+  write_stream_atomically(path, [&](std::ostream& out) {
     out << "# scene=" << scene.name << " scale=" << scene.scale << " git_hash=" << git_hash() << "\n";
     std::string header;
     for (const char* c : kTextColumns) header += std::string(header.empty() ? "" : ",") + c;
@@ -143,9 +142,7 @@ void write_csv(const std::string& path, const Scene& scene, const std::vector<nl
       for (double s : j.at("sizes")) out << (first ? "" : ";") << s, first = false;
       out << "\n";
     }
-    if (!out) throw std::runtime_error("cannot write " + tmp);
-  }
-  std::filesystem::rename(tmp, path);
+  });
 }
 
 }  // namespace

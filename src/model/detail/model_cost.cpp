@@ -1,6 +1,8 @@
 // Cost model T/N (docs/MODEL.md section 3): Eqs. (6), (9)-(16), (19)-(22), (27).
 #include "model/detail/model_cost.hpp"
 
+#include "grid/geometry.hpp"
+
 #include <cmath>
 
 namespace hgrid::detail {
@@ -18,7 +20,7 @@ double ipow(double x, int n) {
 CostModel::CostModel(const Distribution& dist, const ModelParams& p) : dist_(dist), p_(p) {
   validate(p);
   nc_ = (p.d == 2) ? 4 : 13;
-  const double vd = (p.d == 2) ? M_PI : 4.0 * M_PI / 3.0;
+  const double vd = unit_ball_volume(p.d);
   vp_ = vd * dist.moment(p.d, 0.0, dist.r_max());  // mean particle volume
   c_ = p.nu / vp_;
   double binom = 1.0;

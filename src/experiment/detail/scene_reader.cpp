@@ -1,0 +1,139 @@
+#include "experiment/detail/scene_reader.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "grid/error.hpp"
+
+namespace hgrid::detail {
+
+SceneFile read_scene_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError("scene", "cannot open '" + path + "'");
+  std::stringstream buf;
+  buf << in.rdbuf();
+  try {
+    return {buf.str(), toml::parse(buf.str(), path)};
+  } catch (const toml::parse_error& e) {
+    std::ostringstream msg;
+    msg << e.description() << " at line " << e.source().begin.line;
+    throw InputError("scene", msg.str() + " in " + path);
+  }
+}
+
+void check_keys(const toml::table& t, const std::string& where, const std::set<std::string>& allowed) {
+  for (const auto& [k, v] : t) {
+    const std::string key(k.str());
+    if (!allowed.count(key)) {
+      std::string list;
+      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      throw InputError(where + key, "unknown key (allowed: " + list + ")");
+    }
+  }
+}
+
+void check_scale_name(const std::string& scale) {
+  if (scale != "smoke" && scale != "default" && scale != "paper")
+    throw InputError("scale", "must be smoke, default or paper (got '" + scale + "')");
+}
+
+const toml::table* scale_section(const toml::table& root, const std::string& scale, const std::string& section,
+                                 const SceneSections& sections) {
+  const auto* scales = root["scale"].as_table();
+  if (!scales) {
+    if (root.contains("scale")) throw InputError("scale", "must be a table of [scale.<name>.<section>] tables");
+    return nullptr;
+  }
+  check_keys(*scales, "scale.", {"smoke", "default", "paper"});
+  std::set<std::string> names;
+  for (const auto& [name, keys] : sections) names.insert(name);
+  for (const auto& [sk, sv] : *scales) {
+    const std::string where = "scale." + std::string(sk.str());
+    const auto* st = sv.as_table();
+    if (!st) throw InputError(where, "must be a table");
+    check_keys(*st, where + ".", names);
+    for (const auto& [name, sub] : *st) {
+      const std::string w = where + "." + std::string(name.str());
+      const auto* subt = sub.as_table();
+      if (!subt) throw InputError(w, "must be a table");
+      check_keys(*subt, w + ".", sections.at(std::string(name.str())));
+    }
+  }
+  const auto* st = (*scales)[scale].as_table();
+  return st ? (*st)[section].as_table() : nullptr;
+}
+
+const toml::table& section(const toml::table& root, const std::string& name) {
+  static const toml::table empty;
+  const auto* t = root[name].as_table();
+  if (root.contains(name) && !t) throw InputError(name, "must be a table");
+  return t ? *t : empty;
+}
+
+namespace {
+std::string key_name(const std::string& sec, const std::string& key) { return sec.empty() ? key : sec + "." + key; }
+}  // namespace
+
+double number(const toml::table& t, const std::string& sec, const std::string& key, double def) {
+  const auto* n = t.get(key);
+  if (!n) return def;
+  if (auto v = n->value<double>(); v && std::isfinite(*v)) return *v;
+  throw InputError(key_name(sec, key), "must be a finite number");
+}
+
+std::uint64_t count(const toml::table& t, const std::string& sec, const std::string& key, std::uint64_t def) {
+  const auto* n = t.get(key);
+  if (!n) return def;
+  auto v = n->value<std::int64_t>();
+  if (!v || *v < 0) throw InputError(key_name(sec, key), "must be an integer >= 0");
+  return static_cast<std::uint64_t>(*v);
+}
+
+std::string text(const toml::table& t, const std::string& sec, const std::string& key, const std::string& def) {
+  const auto* n = t.get(key);
+  if (!n) return def;
+  if (auto v = n->value<std::string>()) return *v;
+  throw InputError(key_name(sec, key), "must be a string");
+}
+
+bool flag(const toml::table& t, const std::string& sec, const std::string& key, bool def) {
+  const auto* n = t.get(key);
+  if (!n) return def;
+  if (auto v = n->value<bool>()) return *v;
+  throw InputError(key_name(sec, key), "must be true or false");
+}
+
+std::vector<double> numbers(const toml::node& n, const std::string& key) {
+  std::vector<double> out;
+  auto one = [&](const toml::node& e) {
+    if (auto v = e.value<double>()) return *v;
+    throw InputError(key, "must be a number");
+  };
+  if (const auto* a = n.as_array()) {
+    for (const auto& e : *a) out.push_back(one(e));
+  } else {
+    out.push_back(one(n));
+  }
+  if (out.empty()) throw InputError(key, "must not be empty");
+  for (double v : out)
+    if (!std::isfinite(v)) throw InputError(key, "must be finite");
+  return out;
+}
+
+std::vector<std::string> strings(const toml::node& n, const std::string& key) {
+  std::vector<std::string> out;
+  auto one = [&](const toml::node& e) {
+    if (auto s = e.value<std::string>()) return *s;
+    throw InputError(key, "must be a string or a list of strings");
+  };
+  if (const auto* a = n.as_array()) {
+    for (const auto& e : *a) out.push_back(one(e));
+  } else {
+    out.push_back(one(n));
+  }
+  if (out.empty()) throw InputError(key, "must not be empty");
+  return out;
+}
+
+}  // namespace hgrid::detail
