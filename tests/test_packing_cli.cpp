@@ -173,5 +173,36 @@ TEST_F(Cli, BadInputExitsWithStatus2) {
   EXPECT_EQ(hgrid_run("pairs --help").status, 0);
 }
 
+TEST_F(Cli, OutputThatCannotBeWrittenLeavesNothingBehind) {
+  // The output path is a directory: the rename fails; exit 2 naming the
+  // output, and no temporary file is left beside it.
+  fs::create_directories(path("out.h5"));
+  const Result r =
+      hgrid_run("generate --d 2 --n 50 --nu 0.1 --alpha -3 --omega 4 --seed 3 --out " + path("out.h5"));
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("out"), std::string::npos) << r.err;
+  for (const auto& e : fs::directory_iterator(dir_))
+    EXPECT_EQ(e.path().filename().string().find(".tmp."), std::string::npos) << e.path();
+}
+
+TEST_F(Cli, VersionNamesTheCommit) {
+  const Result r = hgrid_run("--version");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.out.rfind(std::string("hgrid ") + version() + " (" + git_hash(), 0), 0u) << r.out;
+}
+
+TEST_F(Cli, DpmSceneWritesHdf5AndCsvLikeTheOtherScenes) {
+  const Result r = hgrid_run("run " + std::string(HGRID_SOURCE_DIR) + "/experiments/dpm_free_cooling.toml --scale smoke --results " +
+                             path("res") + " --packings " + path("cache"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(path("res/dpm_free_cooling-smoke.h5")));
+  std::ifstream csv(path("res/dpm_free_cooling-smoke.csv"));
+  std::string text((std::istreambuf_iterator<char>(csv)), {});
+  for (const char* key : {"# n=2000\n", "# steps=2000\n", "# trajectories_identical=1\n", "# git_hash=",
+                          "# optimal.sizes=", "# predicted_speedup_contact_detection=", "\nt,E_optimal,E_linked_cell,E_haff\n"})
+    EXPECT_NE(text.find(key), std::string::npos) << key;
+  EXPECT_EQ(text.find("paper"), std::string::npos) << "the paper's constants belong to plots/";
+}
+
 }  // namespace
 }  // namespace hgrid::test

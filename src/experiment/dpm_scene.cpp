@@ -21,6 +21,7 @@
 #include "io/provenance.hpp"
 #include "experiment/packing_cache.hpp"
 #include "io/atomic_file.hpp"
+#include "io/h5.hpp"
 #include "packing/progress.hpp"
 
 namespace hgrid::dpm {
@@ -108,12 +109,23 @@ nlohmann::json run_json(const RunResult& r) {
           {"energy_final_over_initial", r.E.back() / r.E.front()}};
 }
 
-std::string fmt(double x, int prec) {
-  std::ostringstream o;
-  o.setf(std::ios::fixed);
-  o.precision(prec);
-  o << x;
-  return o.str();
+/// The summary as dotted key -> scalar, string or array of numbers (booleans
+/// and integers as numbers), in a fixed order.
+std::vector<std::pair<std::string, nlohmann::json>> flatten(const nlohmann::json& j, const std::string& prefix = "") {
+  std::vector<std::pair<std::string, nlohmann::json>> out;
+  for (const auto& [k, v] : j.items()) {
+    const std::string key = prefix.empty() ? k : prefix + "." + k;
+    if (v.is_object()) {
+      for (auto& kv : flatten(v, key)) out.push_back(std::move(kv));
+    } else if (v.is_boolean()) {
+      out.emplace_back(key, v.get<bool>() ? 1.0 : 0.0);
+    } else if (v.is_number()) {
+      out.emplace_back(key, v.get<double>());
+    } else {
+      out.emplace_back(key, v);
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -197,43 +209,59 @@ void run_dpm_scene(const std::string& path, const std::string& scale, const RunO
       {"speedup_contact_detection", b.stats.seconds_contact_detection / a.stats.seconds_contact_detection},
       {"speedup_query", b.stats.seconds_query / a.stats.seconds_query},
       {"speedup_total", b.seconds_total / a.seconds_total},
-      {"paper_predicted_speedup_contact_detection", 35.0},
-      {"paper_speedup_total", 9.9},
       {"seconds_per_check", c_check},
       {"seconds_per_access", c_access},
       {"K_effective", c_access / c_check},
       {"haff", {{"t0", haff.t0}, {"E0", haff.E0}, {"r2", haff.r2}}},
+      {"version", version()},
       {"git_hash", git_hash()},
+      {"compiler", compiler_id()},
   };
 
   std::filesystem::create_directories(opt.results_dir);
   const std::string stem = opt.results_dir + "/" + sc.name + (scale == "default" ? "" : "-" + scale);
-  write_text_atomically(stem + ".json", out.dump(2) + "\n");
-  std::ostringstream csv;
-  csv << "# " << sc.name << " " << scale << ": kinetic energy; Haff fit t0 = " << haff.t0 << ", E0 = " << haff.E0
-      << "\nt,E_optimal,E_linked_cell,E_haff\n";
-  csv.precision(10);
+  std::vector<double> haff_E(a.t.size()), lc_E(a.t.size(), std::nan(""));
   for (std::size_t i = 0; i < a.t.size(); ++i) {
-    const double h = haff.E0 / ((1 + a.t[i] / haff.t0) * (1 + a.t[i] / haff.t0));
-    csv << a.t[i] << "," << a.E[i] << "," << (i < b.E.size() ? b.E[i] : NAN) << "," << h << "\n";
+    haff_E[i] = haff.E0 / ((1 + a.t[i] / haff.t0) * (1 + a.t[i] / haff.t0));
+    if (i < b.E.size()) lc_E[i] = b.E[i];
   }
-  write_text_atomically(stem + "-energy.csv", csv.str());
-  std::ostringstream row;
-  row << "| " << scale << " | " << p.size() << " | " << sc.steps << " | " << a.sizes.size() << " levels: ";
-  for (std::size_t i = 0; i < a.sizes.size(); ++i) row << (i ? ", " : "") << fmt(a.sizes[i], 1);
-  row << " | " << fmt(a.seconds_total, 1) << " s / " << fmt(b.seconds_total, 1) << " s | "
-      << fmt(out["predicted_speedup_contact_detection"].get<double>(), 1) << " (paper 35) | "
-      << fmt(out["measured_count_ratio"].get<double>(), 1) << " | "
-      << fmt(out["speedup_contact_detection"].get<double>(), 1) << " | "
-      << fmt(out["speedup_total"].get<double>(), 1) << " (paper 9.9) | " << fmt(haff.r2, 4) << " |\n";
-  write_text_atomically(stem + "-row.md", row.str());
+  const auto flat = flatten(out);
+  // HDF5: the summary as root attributes, the energy curves as datasets.
+  detail::h5_write_file(stem + ".h5", [&](hid_t f) {
+    detail::h5_write_dataset(f, "/t", a.t, {a.t.size()});
+    detail::h5_write_dataset(f, "/E_optimal", a.E, {a.E.size()});
+    detail::h5_write_dataset(f, "/E_linked_cell", lc_E, {lc_E.size()});
+    detail::h5_write_dataset(f, "/E_haff", haff_E, {haff_E.size()});
+    detail::H5Handle root{H5Gopen2(f, "/", H5P_DEFAULT), H5Gclose};
+    for (const auto& [k, v] : flat) {
+      if (v.is_string()) detail::h5_write_attr(root.id, k, v.get<std::string>());
+      else if (v.is_array()) detail::h5_write_attr(root.id, k, v.get<std::vector<double>>());
+      else detail::h5_write_attr(root.id, k, std::vector<double>{v.get<double>()});
+    }
+  });
+  // CSV: the same summary as "# key=value" lines (what plots/dpm.sh renders),
+  // then the energy curves.
+  write_stream_atomically(stem + ".csv", [&](std::ostream& csv) {
+    csv.precision(10);
+    for (const auto& [k, v] : flat) {
+      if (k == "source") continue;  // multi-line: in the HDF5 file
+      csv << "# " << k << "=";
+      if (v.is_string()) csv << v.get<std::string>();
+      else if (v.is_array()) {
+        for (std::size_t i = 0; i < v.size(); ++i) csv << (i ? ";" : "") << v[i].get<double>();
+      } else csv << v.get<double>();
+      csv << "\n";
+    }
+    csv << "t,E_optimal,E_linked_cell,E_haff\n";
+    for (std::size_t i = 0; i < a.t.size(); ++i) csv << a.t[i] << "," << a.E[i] << "," << lc_E[i] << "," << haff_E[i] << "\n";
+  });
 
   if (json) std::cout << out.dump(2) << "\n";
   else
     std::cout << sc.name << " (" << scale << "): speed-up contact detection "
               << out["speedup_contact_detection"].get<double>() << " (predicted "
               << out["predicted_speedup_contact_detection"].get<double>() << "), whole run "
-              << out["speedup_total"].get<double>() << "; results in " << stem << ".json\n";
+              << out["speedup_total"].get<double>() << "; results in " << stem << ".h5 and .csv\n";
 }
 
 }  // namespace hgrid::dpm
