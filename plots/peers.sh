@@ -5,6 +5,7 @@
 #                                           N = 1000000: about an hour)
 # PEERS_FLAGS (default: no linked cell, which takes ~50 s per build at N = 1e5,
 # and the small LAMMPS class scan) is passed on to build/peers.
+# PEERS_PLOT_ONLY=1 redraws paper_figs/peers.png from results/peers.csv.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 N=${1:-100000}
@@ -12,6 +13,12 @@ PLACEMENT=${2:-excluded}
 FLAGS=${PEERS_FLAGS:---no-linked-cell --scan small}
 CSV=results/peers.csv
 mkdir -p results/peers paper_figs
+if [ "${PEERS_PLOT_ONLY:-0}" != 0 ]; then
+  gnuplot -e "in='$CSV'; out='paper_figs/.peers.tmp.png'; placement='$PLACEMENT'" plots/peers.gp
+  mv -f paper_figs/.peers.tmp.png paper_figs/peers.png
+  echo "redrew paper_figs/peers.png from $CSV"
+  exit 0
+fi
 # Every output goes to a temporary name first and is renamed when complete:
 # a failed or interrupted run leaves the previous results as they were.
 tmp_csv="results/.peers.csv.tmp"
