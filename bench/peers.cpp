@@ -310,14 +310,14 @@ int main(int argc, char** argv) {
   CLI::App app{"hgridlab vs linked cell, CGAL box_intersection_d and LAMMPS neighbor multi/bin"};
   Options o;
   o.spec.d = 3, o.spec.nu = 0.6, o.spec.alpha = -3, o.spec.omega = 100, o.spec.progress = true;
-  app.add_option("--n", o.spec.n, "number of particles")->required();
+  app.add_option("--n", o.spec.n, "number of particles")->required()->check(CLI::NonNegativeNumber);
   app.add_option("--d", o.spec.d, "dimension")->default_val(3);
   app.add_option("--nu", o.spec.nu, "packing fraction")->default_val(0.6);
   app.add_option("--alpha", o.spec.alpha, "power-law exponent")->default_val(-3.0);
   app.add_option("--omega", o.spec.omega, "r_max / r_min")->default_val(100.0);
   app.add_option("--placement", o.placement, "excluded|random")->default_val("excluded");
   app.add_option("--boundary", o.boundary, "periodic|walls")->default_val("periodic");
-  app.add_option("--seed", o.spec.seed, "seed")->default_val(1);
+  app.add_option("--seed", o.spec.seed, "seed")->default_val(1)->check(CLI::NonNegativeNumber);
   app.add_option("--cache", o.cache, "packing cache directory")->default_val("results/packings");
   app.add_option("--work", o.work, "LAMMPS work directory (default results/peers/lammps-nN)");
   app.add_option("--repeats", o.repeats, "CGAL and hgridlab with a new grid per build: best of this many builds")->default_val(3);

@@ -1,25 +1,17 @@
 // End to end: `--K auto` in `hgrid model` and `hgrid count` against a stored
 // calibration (HGRID_CALIBRATION), and exit status 2 without one.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <array>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "cli_support.hpp"
 #include "experiment/calibration.hpp"
 
 namespace {
 
+using hgrid::test::hgrid_run;
+using hgrid::test::Result;
 namespace fs = std::filesystem;
-
-struct Result {
-  int status;
-  std::string out, err;
-};
 
 fs::path temp_path(const std::string& name) {
   return fs::temp_directory_path() / ("hgridlab_cli_calib_" + std::to_string(::getpid()) + "_" + name);
@@ -27,19 +19,7 @@ fs::path temp_path(const std::string& name) {
 
 /// Runs hgrid with HGRID_CALIBRATION=cal; stdout and stderr captured.
 Result run(const fs::path& cal, const std::string& args) {
-  const fs::path err = temp_path("stderr");
-  const std::string cmd = "HGRID_CALIBRATION='" + cal.string() + "' " + std::string(HGRID_BINARY) + " " + args +
-                          " 2>" + err.string();
-  Result r{};
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf;
-  for (std::size_t n; (n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0;) r.out.append(buf.data(), n);
-  const int st = ::pclose(pipe);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  std::ifstream e(err);
-  r.err.assign(std::istreambuf_iterator<char>(e), {});
-  fs::remove(err);
-  return r;
+  return hgrid_run(args, "HGRID_CALIBRATION='" + cal.string() + "'");
 }
 
 class CliCalibration : public ::testing::Test {

@@ -193,6 +193,9 @@ TEST(Model, BadInputsRejected) {
     evaluate_model(f, with([](ModelParams& p) { p.nu = 0.0; }), {20.0});
   } catch (const InputError& e) {
     EXPECT_EQ(e.field(), "nu");
-    EXPECT_NE(std::string(e.what()).find("> 0"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("(0, 1]"), std::string::npos);
   }
+  // A packing fraction above 1 (or 1e308) is refused, not evaluated to inf.
+  EXPECT_THROW(evaluate_model(f, with([](ModelParams& p) { p.nu = 1.5; }), {20.0}), InputError);
+  EXPECT_THROW(evaluate_model(f, with([](ModelParams& p) { p.nu = 1e308; }), {20.0}), InputError);
 }

@@ -10,51 +10,13 @@
 
 #include "grid/error.hpp"
 #include "packing/packing.hpp"
+#include "cli_support.hpp"
 #include "support.hpp"
 #include "io/packing_file.hpp"
 #include "io/provenance.hpp"
 
 namespace hgrid::test {
 namespace {
-
-namespace fs = std::filesystem;
-
-struct Result {
-  int status;
-  std::string out;
-  std::string err;
-};
-
-/// Runs the hgrid binary with the given arguments; stdout and stderr captured.
-Result hgrid_run(const std::string& args) {
-  static int counter = 0;
-  const fs::path err = fs::temp_directory_path() / ("hgrid_test_err_" + std::to_string(::getpid()) + "_" +
-                                                    std::to_string(counter++));
-  const std::string cmd = std::string(HGRID_BINARY) + " " + args + " 2>" + err.string();
-  Result r{};
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf;
-  std::size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-  const int st = ::pclose(pipe);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  std::ifstream e(err);
-  r.err.assign(std::istreambuf_iterator<char>(e), {});
-  fs::remove(err);
-  return r;
-}
-
-class TempDir : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("hgridlab_" + std::to_string(::getpid()) + "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  fs::path dir_;
-};
 
 Packing packing_from(const Scene<3>& s, Boundary b) {
   Packing p;
@@ -192,13 +154,18 @@ TEST_F(Cli, VersionNamesTheCommit) {
 }
 
 TEST_F(Cli, DpmSceneWritesHdf5AndCsvLikeTheOtherScenes) {
-  const Result r = hgrid_run("run " + std::string(HGRID_SOURCE_DIR) + "/experiments/dpm_free_cooling.toml --scale smoke --results " +
-                             path("res") + " --packings " + path("cache"));
+  // A small DPM scene (the shipped one at smoke scale takes ~2 min under ASan).
+  std::ofstream(path("dpm.toml")) << "kind = \"dpm\"\nname = \"tiny\"\n"
+                                     "[initial]\nd = 2\nn = 300\nnu = 0.3\nalpha = -3\nomega = 5\n"
+                                     "[contact]\ncontact_time = 0.05\ndt_over_tc = 0.05\n"
+                                     "[run]\nsteps = 200\nsample_every = 50\n[grids]\nreference_size = 10\n";
+  const Result r = hgrid_run("run " + path("dpm.toml") + " --scale smoke --results " + path("res") + " --packings " +
+                             path("cache"));
   ASSERT_EQ(r.status, 0) << r.err;
-  EXPECT_TRUE(fs::exists(path("res/dpm_free_cooling-smoke.h5")));
-  std::ifstream csv(path("res/dpm_free_cooling-smoke.csv"));
+  EXPECT_TRUE(fs::exists(path("res/tiny-smoke.h5")));
+  std::ifstream csv(path("res/tiny-smoke.csv"));
   std::string text((std::istreambuf_iterator<char>(csv)), {});
-  for (const char* key : {"# n=2000\n", "# steps=2000\n", "# trajectories_identical=1\n", "# git_hash=",
+  for (const char* key : {"# n=300\n", "# steps=200\n", "# trajectories_identical=1\n", "# git_hash=",
                           "# optimal.sizes=", "# predicted_speedup_contact_detection=", "\nt,E_optimal,E_linked_cell,E_haff\n"})
     EXPECT_NE(text.find(key), std::string::npos) << key;
   EXPECT_EQ(text.find("paper"), std::string::npos) << "the paper's constants belong to plots/";

@@ -1,5 +1,6 @@
 // hgrid export --lammps DIR: a packing (a file, or generation options with the
 // packing cache) as a LAMMPS data file and the two timing scripts.
+#include <cmath>
 #include <algorithm>
 #include <iostream>
 #include <memory>
@@ -28,7 +29,7 @@ void run_export(ExportOptions o) {
   Packing p;
   if (!o.file.empty()) {
     if (o.spec.n != 0) throw InputError("n", "give either FILE or generation options (--n ...), not both");
-    p = read_packing(o.file);
+    p = read_packing(o.file, Isolation::child_process);
   } else {
     if (o.spec.n == 0) throw InputError("n", "give FILE or --n N (and the other generation options)");
     o.spec.boundary = parse_boundary(o.boundary);
@@ -42,6 +43,8 @@ void run_export(ExportOptions o) {
   } else {
     double rmin = p.radii.empty() ? 1.0 : p.radii[0];
     for (double r : p.radii) rmin = std::min(rmin, r);
+    if (!(std::isfinite(o.smallest) && o.smallest >= 0))
+      throw InputError("smallest", "must be a finite number > 0, or 0 for 2 r_min (got " + format_number(o.smallest) + ")");
     s.collections = geometric_collections(p, o.classes, o.smallest > 0 ? o.smallest : 2 * rmin);
   }
   export_lammps(o.lammps, p, s);
@@ -61,13 +64,13 @@ void register_export_commands(CLI::App& app) {
   sub->add_option("--smallest", o->smallest, "multi, without --collections: smallest class bound (default 2 r_min)");
   sub->add_option("--builds", o->builds, "timed neighbour-list builds per run")->default_val(10);
   sub->add_option("--d", o->spec.d, "generate: dimension, 2 or 3")->default_val(3);
-  sub->add_option("--n", o->spec.n, "generate: number of particles");
+  sub->add_option("--n", o->spec.n, "generate: number of particles")->check(CLI::NonNegativeNumber);
   sub->add_option("--nu", o->spec.nu, "generate: packing fraction")->default_val(0.6);
   sub->add_option("--alpha", o->spec.alpha, "generate: power-law exponent")->default_val(-3.0);
   sub->add_option("--omega", o->spec.omega, "generate: r_max / r_min")->default_val(100.0);
   sub->add_option("--boundary", o->boundary, "generate: periodic|walls")->default_val("periodic");
   sub->add_option("--placement", o->placement, "generate: random|excluded")->default_val("excluded");
-  sub->add_option("--seed", o->spec.seed, "generate: random seed")->default_val(1);
+  sub->add_option("--seed", o->spec.seed, "generate: random seed")->default_val(1)->check(CLI::NonNegativeNumber);
   sub->add_option("--cache", o->cache_dir, "generate: packing cache directory")->default_val("results/packings");
   sub->callback([o] { run_export(*o); });
 }

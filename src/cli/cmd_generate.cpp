@@ -49,7 +49,7 @@ void register_generate_commands(CLI::App& app) {
   auto o = std::make_shared<GenerateOptions>();
   auto* sub = app.add_subcommand("generate", "generate a packing and write it as HDF5");
   sub->add_option("--d", o->spec.d, "dimension, 2 or 3")->default_val(3);
-  sub->add_option("--n", o->spec.n, "number of particles")->required();
+  sub->add_option("--n", o->spec.n, "number of particles")->required()->check(CLI::NonNegativeNumber);
   sub->add_option("--nu", o->spec.nu, "packing fraction (total particle volume / box volume), in (0, 1)")->required();
   sub->add_option("--dist", o->spec.dist, "radius distribution: powerlaw|lognormal")->default_val("powerlaw");
   sub->add_option("--alpha", o->spec.alpha, "power-law exponent of the radius pdf")->default_val(-3.0);
@@ -59,7 +59,7 @@ void register_generate_commands(CLI::App& app) {
   sub->add_option("--placement", o->placement, "random (independent centres) | excluded (no overlaps)")
       ->default_val("random");
   sub->add_flag("--equilibrate", o->spec.equilibrate, "excluded: hard-sphere equilibration after placement");
-  sub->add_option("--seed", o->spec.seed, "random seed")->default_val(1);
+  sub->add_option("--seed", o->spec.seed, "random seed")->default_val(1)->check(CLI::NonNegativeNumber);
   sub->add_option("--out", o->out, "output file (.h5)");
   sub->add_option("--cache", o->cache_dir, "instead of --out: reuse or create DIR/<hash>.h5 (path printed)");
   sub->add_flag("--quiet", o->quiet, "no progress lines");

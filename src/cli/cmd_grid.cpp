@@ -82,7 +82,7 @@ GridParams resolve(const GridOptions& o, const Packing& p, double K) {
 }
 
 void run_pairs(const GridOptions& o, bool brute) {
-  const Packing p = read_packing(o.file);
+  const Packing p = read_packing(o.file, Isolation::child_process);
   const GridParams g = brute ? GridParams{} : resolve(o, p, 0.2);
   dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
     constexpr int D = decltype(dim)::value;
@@ -162,7 +162,7 @@ void print_count_table(const nlohmann::json& j) {
 void run_count(const GridOptions& o, const std::string& K_text, int repeat, bool as_json) {
   const double K = resolve_K(K_text, "K");
   if (repeat < 0) throw InputError("repeat", "must be >= 0");
-  const Packing p = read_packing(o.file);
+  const Packing p = read_packing(o.file, Isolation::child_process);
   const GridParams g = resolve(o, p, K);
   nlohmann::json j = dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
     constexpr int D = decltype(dim)::value;

@@ -29,7 +29,7 @@ void run_info(const InfoOptions& o) {
     return;
   }
   if (o.file.empty()) throw InputError("file", "give a packing file, or --rcp with a distribution");
-  const Packing p = read_packing(o.file);
+  const Packing p = read_packing(o.file, Isolation::child_process);
   const auto dist = recorded_distribution(p);
   const PackingQuality q = assess_packing(p, dist.get());
   nlohmann::json j;

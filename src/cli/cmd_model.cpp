@@ -35,7 +35,7 @@ std::vector<double> read_radii(const std::string& path) {
   const auto ends = [&](const std::string& suf) {
     return path.size() >= suf.size() && path.compare(path.size() - suf.size(), suf.size(), suf) == 0;
   };
-  if (ends(".h5") || ends(".hdf5")) return read_packing(path).radii;
+  if (ends(".h5") || ends(".hdf5")) return read_packing(path, Isolation::child_process).radii;
   std::ifstream in(path);
   if (!in) throw InputError("radii", "cannot open '" + path + "'");
   std::vector<double> out;

@@ -1,4 +1,7 @@
 // hgrid: the command-line front end of hgridlab.
+#include <cmath>
+#include <csignal>
+#include <cstdlib>
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -12,25 +15,55 @@ namespace hgrid::cli {
 
 std::vector<double> parse_list(const std::string& text, const std::string& field) {
   std::vector<double> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    std::size_t used = 0;
-    double v = 0;
-    try {
-      v = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != item.size())
+  if (text.empty()) throw InputError(field, "empty list");
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = text.find(',', start);
+    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    // strtod, not stod: a denormal is a number (stod calls it out of range).
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || end != item.c_str() + item.size())
       throw InputError(field, "'" + item + "' is not a number (expected a comma-separated list)");
+    if (!std::isfinite(v)) throw InputError(field, "'" + item + "' is not a finite number");
     out.push_back(v);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
   }
-  if (out.empty()) throw InputError(field, "empty list");
   return out;
 }
 
 }  // namespace hgrid::cli
+
+namespace {
+
+int parse_and_run(CLI::App& app, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // An unknown option is named as such, even when a required one is also
+    // missing (CLI11 reports the missing one first).
+    const auto extra = app.remaining(true);
+    if (!extra.empty()) std::cerr << "hgrid: error: " << extra.front() << ": unknown option or argument (see --help)\n";
+    else std::cerr << "hgrid: " << e.what() << " (see --help)\n";
+    return hgrid::cli::kBadInput;
+  } catch (const hgrid::InputError& e) {
+    std::cerr << "hgrid: error: " << e.what() << "\n";
+    return hgrid::cli::kBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "hgrid: internal error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"hgrid: hierarchical-grid contact detection, counted, and its cost model\n"
@@ -45,23 +78,22 @@ int main(int argc, char** argv) {
   hgrid::cli::register_run_commands(app);
   hgrid::cli::register_export_commands(app);
   hgrid::cli::register_calibrate_commands(app);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::cerr << "hgrid: " << e.what() << " (see --help)\n";
-    return hgrid::cli::kBadInput;
-  } catch (const hgrid::InputError& e) {
-    std::cerr << "hgrid: error: " << e.what() << "\n";
-    return hgrid::cli::kBadInput;
-  } catch (const std::exception& e) {
-    std::cerr << "hgrid: internal error: " << e.what() << "\n";
+  // An empty value ("--cells ''") is refused, not taken for "not given".
+  const CLI::Validator non_empty([](std::string& v) { return v.empty() ? std::string("must not be empty") : ""; },
+                                 "", "non-empty");
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+    for (CLI::Option* opt : sub->get_options())
+      if (opt->get_type_size() > 0 && opt->get_expected_min() > 0) opt->check(non_empty);
+  // A closed pipe is an output error reported like any other (below), not a
+  // death by signal.
+  std::signal(SIGPIPE, SIG_IGN);
+  const int rc = parse_and_run(app, argc, argv);
+  // Output that did not reach its destination (a full disk, a closed pipe)
+  // is an error, not a success.
+  std::cout.flush();
+  if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    std::cerr << "hgrid: error: stdout: the output could not be written (disk full or pipe closed)\n";
     return 1;
   }
-  return 0;
+  return rc;
 }

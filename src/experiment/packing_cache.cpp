@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "grid/error.hpp"
+#include "io/atomic_file.hpp"
 #include "io/packing_file.hpp"
 
 namespace hgrid {
@@ -36,6 +37,7 @@ Packing cached_packing(const PackingSpec& s, const std::string& dir) {
   }
   Packing p = generate_packing(s);
   std::filesystem::create_directories(dir);
+  remove_stale_temporaries(dir, kStaleTemporaryAge);
   write_packing(path, p);
   return p;
 }

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "experiment/detail/results.hpp"
+#include "io/atomic_file.hpp"
 #include "grid/dispatch.hpp"
 #include "model/distribution.hpp"
 #include "grid/hgrid.hpp"
@@ -90,18 +91,27 @@ std::vector<PointResult> run_scene(const Scene& scene, const RunOptions& opt) {
   std::filesystem::create_directories(opt.results_dir);
   const std::string stem = result_stem(scene, opt);
   const std::string journal = stem + ".journal.jsonl";
+  // Temporary files of runs killed before they could remove them.
+  for (const auto& dir : {opt.results_dir, opt.packing_dir}) remove_stale_temporaries(dir, kStaleTemporaryAge);
 
   // Resume: points measured by an interrupted run of the same scene text.
   std::map<std::string, PointResult> done;
   if (std::ifstream in(journal); in) {
+    std::size_t lineno = 0;
     for (std::string line; std::getline(in, line);) {
+      ++lineno;
       try {
         const auto j = nlohmann::json::parse(line);
-        if (j.at("source") != scene.source) continue;
+        if (!j.is_object() || !j.contains("source") || j.at("source") != scene.source) continue;
         PointResult r = detail::result_from_json(j.at("result"));
+        detail::check_result(r, scene.grid.K);
         done[point_key(r.point)] = r;
-      } catch (const std::exception&) {
-        // a line cut short by the interruption: measure that point again
+      } catch (const std::exception& e) {
+        // A line cut short by the interruption, or one changed by hand: that
+        // point is measured again.
+        if (opt.progress)
+          std::cerr << "hgrid run: " << journal << ":" << lineno << " not used (" << e.what()
+                    << "); that point is measured again\n";
       }
     }
   }
@@ -130,7 +140,7 @@ std::vector<PointResult> run_scene(const Scene& scene, const RunOptions& opt) {
     }
   }
   std::mutex mu;
-  std::ofstream jout(journal, std::ios::app);
+  std::ofstream jout;  // opened with the first result: a run that fails first leaves no journal
   std::atomic<std::size_t> next{0};
   std::size_t finished = 0;
   std::exception_ptr failure;
@@ -148,8 +158,10 @@ std::vector<PointResult> run_scene(const Scene& scene, const RunOptions& opt) {
           PointResult r = run_point(scene, scene.points[i], opt);
           std::lock_guard<std::mutex> lock(mu);
           results[i] = r;
+          if (!jout.is_open()) jout.open(journal, std::ios::app);
           jout << nlohmann::json{{"source", scene.source}, {"result", detail::result_to_json(r)}}.dump() << "\n";
           jout.flush();
+          if (!jout) throw InputError("journal", "cannot write '" + journal + "' (disk full?)");
           ++finished;
           progress.count(static_cast<double>(finished), static_cast<double>(todo.size()),
                          std::to_string(finished) + "/" + std::to_string(todo.size()));

@@ -1,6 +1,7 @@
 #include "experiment/scene.hpp"
 
 #include <cmath>
+#include <map>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -78,15 +79,15 @@ void check_lists(const PackingLists& p) {
 void read_grid(const toml::table& t, SceneGrid& g) {
   check_keys(t, "grid.", {"cells", "levels", "q", "K", "search"});
   if (auto v = t["cells"]) {
-    g.cells = parse_cell_method(strings(*v.node(), "grid.cells").at(0), "grid.cells");
+    g.cells = parse_cell_method(detail::one_string(*v.node(), "grid.cells"), "grid.cells");
   }
   if (auto v = t["levels"]) {
-    const double L = numbers(*v.node(), "grid.levels").at(0);
+    const double L = detail::one_number(*v.node(), "grid.levels");
     if (!(L >= 1 && L == std::floor(L) && L <= 200)) throw InputError("grid.levels", "must be a whole number in [1, 200]");
     g.levels = static_cast<int>(L);
   }
   if (auto v = t["q"]) {
-    g.q = numbers(*v.node(), "grid.q").at(0);
+    g.q = detail::one_number(*v.node(), "grid.q");
     if (!(g.q > 0)) throw InputError("grid.q", "must be > 0");
   }
   if (auto v = t["K"]) {
@@ -94,7 +95,7 @@ void read_grid(const toml::table& t, SceneGrid& g) {
       if (*text != "auto") throw InputError("grid.K", "must be a number >= 0 or \"auto\" (got \"" + *text + "\")");
       g.K = calibrated_K("grid.K");
     } else {
-      g.K = numbers(*v.node(), "grid.K").at(0);
+      g.K = detail::one_number(*v.node(), "grid.K");
       if (!(g.K >= 0)) throw InputError("grid.K", "must be >= 0");
     }
   }
@@ -132,8 +133,8 @@ Scene load_scene(const std::string& path, const std::string& scale) {
   check_keys(root, "", {"name", "description", "kind", "packings", "grid", "record", "scale"});
   if (root["kind"].value_or(std::string("contact")) != "contact")
     throw InputError("kind", "this scene is not a contact-search scene (kind = 'contact')");
-  if (auto v = root["name"].value<std::string>()) s.name = *v;
-  else throw InputError("name", "is required (a string naming the scene and its result files)");
+  if (auto v = root["name"].value<std::string>(); v && !v->empty()) s.name = *v;
+  else throw InputError("name", "is required (a non-empty string naming the scene and its result files)");
   for (char c : s.name)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'))
       throw InputError("name", "may contain only letters, digits, '_' and '-'");
@@ -177,6 +178,18 @@ Scene load_scene(const std::string& path, const std::string& scale) {
                         pt.search = search;
                         s.points.push_back(pt);
                       }
+  // Everything that would fail at generation fails here, before any work
+  // (and before a journal is started), naming the scene key.
+  std::map<std::string, bool> checked;
+  for (const auto& pt : s.points) {
+    if (!checked.emplace(packing_key(pt.packing), true).second) continue;
+    try {
+      check_packing_spec(pt.packing);
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      throw InputError("packings." + e.field(), what.substr(std::min(what.size(), e.field().size() + 2)));
+    }
+  }
   return s;
 }
 

@@ -1,5 +1,6 @@
 // Input errors: every rejection names the offending field and the allowed range.
 #pragma once
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -16,5 +17,13 @@ class InputError : public std::invalid_argument {
  private:
   std::string field_;
 };
+
+/// A number as messages print it: all 17 significant digits, so that the
+/// value named is the value rejected.
+inline std::string format_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
 
 }  // namespace hgrid

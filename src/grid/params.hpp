@@ -21,6 +21,10 @@ inline Search parse_search(std::string_view s, const std::string& field = "searc
   throw InputError(field, "must be 'topdown' or 'bottomup' (got '" + std::string(s) + "')");
 }
 
+/// The most levels a grid (and a cell-size method) may have. The figures'
+/// widest case, linear sizes at omega = 1000, uses 184.
+inline constexpr int kMaxLevels = 1000;
+
 struct GridParams {
   /// Cell sizes s_1 < ... < s_L (L >= 1, strictly increasing, all > 0);
   /// s_L must be at least the largest particle diameter.

@@ -25,6 +25,10 @@ void write_stream_atomically(const std::string& path, const std::function<void(s
 /// Same, with the whole text at once.
 void write_text_atomically(const std::string& path, std::string_view text, const std::string& field = "out");
 
+/// Age after which a temporary file is a leftover: no write of this project
+/// takes this long between creating its temporary file and renaming it.
+inline constexpr std::chrono::seconds kStaleTemporaryAge{600};
+
 /// Removes temporary files ("*.tmp.*") in dir that are older than max_age:
 /// the leftovers of runs killed before they could remove them. Returns how
 /// many were removed; a missing dir is not an error.

@@ -17,8 +17,13 @@ void h5_silence() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 std::vector<double> h5_read_double_attr(hid_t obj, const char* name, const std::string& file) {
   H5Handle a{H5Aopen(obj, name, H5P_DEFAULT), H5Aclose};
   if (a.id < 0) throw InputError(name, "attribute missing in " + file);
+  H5Handle t{H5Aget_type(a.id), H5Tclose};
+  const H5T_class_t cls = H5Tget_class(t.id);
+  if (cls != H5T_FLOAT && cls != H5T_INTEGER) throw InputError(name, "attribute is not numeric in " + file);
   H5Handle sp{H5Aget_space(a.id), H5Sclose};
   const hssize_t n = H5Sget_simple_extent_npoints(sp.id);
+  if (n < 0 || n > static_cast<hssize_t>(kMaxNumericAttrValues))
+    throw InputError(name, "attribute of unusable size in " + file);
   std::vector<double> v(n > 0 ? n : 0);
   if (n > 0 && H5Aread(a.id, H5T_NATIVE_DOUBLE, v.data()) < 0)
     throw InputError(name, "attribute is not numeric in " + file);
@@ -30,8 +35,13 @@ std::string h5_read_string_attr(hid_t obj, const char* name, const std::string& 
   if (a.id < 0) throw InputError(name, "attribute missing in " + file);
   H5Handle t{H5Aget_type(a.id), H5Tclose};
   if (H5Tget_class(t.id) != H5T_STRING) throw InputError(name, "attribute is not a string in " + file);
+  H5Handle sp{H5Aget_space(a.id), H5Sclose};
+  if (H5Sget_simple_extent_npoints(sp.id) != 1) throw InputError(name, "attribute must be one string in " + file);
+  // The memory type takes the file's character set (h5py writes UTF-8), so
+  // that no conversion is asked for.
+  H5Handle mt{H5Tcopy(H5T_C_S1), H5Tclose};
+  H5Tset_cset(mt.id, H5Tget_cset(t.id));
   if (H5Tis_variable_str(t.id) > 0) {
-    H5Handle mt{H5Tcopy(H5T_C_S1), H5Tclose};
     H5Tset_size(mt.id, H5T_VARIABLE);
     char* buf = nullptr;
     if (H5Aread(a.id, mt.id, &buf) < 0) throw InputError(name, "unreadable attribute in " + file);
@@ -39,16 +49,21 @@ std::string h5_read_string_attr(hid_t obj, const char* name, const std::string& 
     H5free_memory(buf);
     return s;
   }
+  // Fixed length: read with null padding into one byte more than the size,
+  // so that a string filling its whole width (no terminator, as h5py and
+  // numpy write them) keeps its last character.
   const std::size_t size = H5Tget_size(t.id);
-  std::string s(size, '\0');
-  H5Handle mt{H5Tcopy(H5T_C_S1), H5Tclose};
+  if (size == 0 || size > kMaxStringAttrBytes) throw InputError(name, "string attribute of unusable size in " + file);
+  std::string s(size + 1, '\0');
   H5Tset_size(mt.id, size);
+  H5Tset_strpad(mt.id, H5T_STR_NULLPAD);
   if (H5Aread(a.id, mt.id, s.data()) < 0) throw InputError(name, "unreadable attribute in " + file);
   s.resize(std::strlen(s.c_str()));
   return s;
 }
 
-std::vector<double> h5_read_dataset(hid_t file, const char* name, std::vector<hsize_t>& dims, const std::string& path) {
+std::vector<double> h5_read_dataset(hid_t file, const char* name, std::vector<hsize_t>& dims, const std::string& path,
+                                    std::uint64_t max_values) {
   H5Handle ds{H5Dopen2(file, name, H5P_DEFAULT), H5Dclose};
   if (ds.id < 0) throw InputError(name, "dataset missing in " + path);
   H5Handle sp{H5Dget_space(ds.id), H5Sclose};
@@ -57,7 +72,14 @@ std::vector<double> h5_read_dataset(hid_t file, const char* name, std::vector<hs
   dims.assign(rank, 0);
   H5Sget_simple_extent_dims(sp.id, dims.data(), nullptr);
   hsize_t n = 1;
-  for (auto v : dims) n *= v;
+  for (auto v : dims) {
+    if (v != 0 && n > max_values / v)
+      throw InputError(name, "dataset declares more values than allowed (" + std::to_string(max_values) + ") in " + path);
+    n *= v;
+  }
+  H5Handle t{H5Dget_type(ds.id), H5Tclose};
+  const H5T_class_t cls = H5Tget_class(t.id);
+  if (cls != H5T_FLOAT && cls != H5T_INTEGER) throw InputError(name, "dataset is not numeric in " + path);
   std::vector<double> out(n);
   if (n > 0 && H5Dread(ds.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
     throw InputError(name, "could not read dataset (truncated or corrupt file?) in " + path);
@@ -73,12 +95,23 @@ void h5_write_attr(hid_t obj, const std::string& name, const std::vector<double>
 }
 
 void h5_write_attr(hid_t obj, const std::string& name, const std::string& v) {
+  // Variable-length UTF-8, as h5py writes str (and reads it back as str).
   H5Handle t{H5Tcopy(H5T_C_S1), H5Tclose};
-  H5Tset_size(t.id, v.empty() ? 1 : v.size());
+  H5Tset_size(t.id, H5T_VARIABLE);
+  H5Tset_cset(t.id, H5T_CSET_UTF8);
   H5Handle sp{H5Screate(H5S_SCALAR), H5Sclose};
   H5Handle a{H5Acreate2(obj, name.c_str(), t.id, sp.id, H5P_DEFAULT, H5P_DEFAULT), H5Aclose};
-  if (a.id < 0 || H5Awrite(a.id, t.id, v.c_str()) < 0) throw std::runtime_error("HDF5: cannot write attribute " + name);
+  const char* text = v.c_str();
+  if (a.id < 0 || H5Awrite(a.id, t.id, &text) < 0) throw std::runtime_error("HDF5: cannot write attribute " + name);
 }
+
+void h5_write_attr(hid_t obj, const std::string& name, std::int64_t v) {
+  H5Handle sp{H5Screate(H5S_SCALAR), H5Sclose};
+  H5Handle a{H5Acreate2(obj, name.c_str(), H5T_STD_I64LE, sp.id, H5P_DEFAULT, H5P_DEFAULT), H5Aclose};
+  if (a.id < 0 || H5Awrite(a.id, H5T_NATIVE_INT64, &v) < 0) throw std::runtime_error("HDF5: cannot write attribute " + name);
+}
+
+bool h5_has_attr(hid_t obj, const char* name) { return H5Aexists_by_name(obj, ".", name, H5P_DEFAULT) > 0; }
 
 namespace {
 /// Dataset creation without modification times, so that the same content

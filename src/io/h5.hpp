@@ -33,10 +33,22 @@ void h5_silence();
 
 std::vector<double> h5_read_double_attr(hid_t obj, const char* name, const std::string& file);
 std::string h5_read_string_attr(hid_t obj, const char* name, const std::string& file);
-std::vector<double> h5_read_dataset(hid_t file, const char* name, std::vector<hsize_t>& dims, const std::string& path);
+/// Reads a numeric dataset of rank 1 or 2 as doubles. A dataset declaring more
+/// than max_values values is refused before anything is allocated.
+std::vector<double> h5_read_dataset(hid_t file, const char* name, std::vector<hsize_t>& dims, const std::string& path,
+                                    std::uint64_t max_values);
+
+/// Whether obj has an attribute of that name (no attribute is iterated).
+bool h5_has_attr(hid_t obj, const char* name);
+
+/// Limits on what a file may declare before it is read.
+inline constexpr std::size_t kMaxStringAttrBytes = 1 << 20;
+inline constexpr std::size_t kMaxNumericAttrValues = 1 << 16;
 
 void h5_write_attr(hid_t obj, const std::string& name, const std::vector<double>& v);
 void h5_write_attr(hid_t obj, const std::string& name, const std::string& v);
+/// An integer attribute (h5py reads it as an int).
+void h5_write_attr(hid_t obj, const std::string& name, std::int64_t v);
 void h5_write_dataset(hid_t file, const std::string& name, const std::vector<double>& v, std::vector<hsize_t> dims);
 void h5_write_dataset(hid_t file, const std::string& name, const std::vector<std::uint64_t>& v,
                       std::vector<hsize_t> dims);

@@ -15,12 +15,6 @@
 namespace hgrid {
 namespace {
 
-std::string num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);  // round-trips exactly
-  return buf;
-}
-
 void check(const Packing& p) {
   if (p.d != 2 && p.d != 3) throw InputError("d", "must be 2 or 3");
   if (p.size() == 0) throw InputError("radii", "empty packing: nothing to export");
@@ -59,15 +53,15 @@ std::string lammps_data(const Packing& p) {
     double lo = 0, hi = a < p.d ? p.box[a] : 0;
     if (a >= p.d) lo = -0.5, hi = 0.5;                 // 2D: thin z box around z = 0
     else if (walls) hi = p.box[a] * (1 + 1e-9);        // centres may sit on the top wall
-    out += num(lo) + " " + num(hi) + " " + ax[a] + "lo " + ax[a] + "hi\n";
+    out += format_number(lo) + " " + format_number(hi) + " " + ax[a] + "lo " + ax[a] + "hi\n";
   }
   out += "\nAtoms # sphere\n\n";
   std::string line;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    line = std::to_string(i + 1) + " 1 " + num(2 * p.radii[i]) + " 1";
+    line = std::to_string(i + 1) + " 1 " + format_number(2 * p.radii[i]) + " 1";
     for (int a = 0; a < 3; ++a) {  // appended piece by piece: GCC 12 warns (-Wrestrict) on " " + string
       line += ' ';
-      line += a < p.d ? num(p.positions[i * p.d + a]) : std::string("0");
+      line += a < p.d ? format_number(p.positions[i * p.d + a]) : std::string("0");
     }
     out += line + "\n";
   }
@@ -96,9 +90,9 @@ std::string lammps_input(const Packing& p, const LammpsScript& s) {
       if (!(c[i] > 0) || !std::isfinite(c[i]) || (i > 0 && !(c[i] > c[i - 1])))
         throw InputError("collections", "class bounds must be finite, > 0 and increasing");
     }
-    if (c.back() < dmax) throw InputError("collections", "the last class bound must be >= the largest diameter " + num(dmax));
+    if (c.back() < dmax) throw InputError("collections", "the last class bound must be >= the largest diameter " + format_number(dmax));
     o << "neighbor 0.0 multi\nneigh_modify collection/interval " << c.size();
-    for (double v : c) o << " " << num(v);
+    for (double v : c) o << " " << format_number(v);
     o << "\ncomm_modify mode multi\n";
   } else {
     o << "neighbor 0.0 bin\n";

@@ -6,10 +6,20 @@
 
 namespace hgrid {
 
+/// How an HDF5 file is read. libhdf5 can crash or loop forever on a corrupt
+/// file (a flipped byte in its global heap, say); `child_process` reads it in
+/// a forked child with a time limit, so that such a file is refused with an
+/// InputError instead. For files from outside (the command-line tool); fork
+/// from a single-threaded caller only.
+enum class Isolation { none, child_process };
+
+/// Seconds a child may take to read an HDF5 file: this plus one per 100 MB.
+inline constexpr double kIsolatedReadBaseSeconds = 5;
+
 /// Reads a packing from an HDF5 file or a CSV file (by the .csv ending),
 /// validates it (see validate()) and returns it. Throws InputError naming the
 /// field that is wrong.
-Packing read_packing(const std::string& path);
+Packing read_packing(const std::string& path, Isolation isolation = Isolation::none);
 
 /// Writes a packing as HDF5 (datasets /positions N x d and /radii N; root
 /// attributes d, box, boundary, the packing's own attributes and the

@@ -11,9 +11,9 @@
 namespace hgrid {
 
 namespace {
-constexpr int kMaxLevels = 100000;     // accepted --levels
-constexpr int kSearchCap = 5000;       // the L* scan stops here at the latest
+constexpr int kSearchCap = kMaxLevels;  // the L* scan stops here at the latest
 constexpr int kConstantSearchCap = 256;  // ... and here for the constant method (shooting)
+constexpr int kOptimalSearchCap = 256;   // ... and here for the optimal method
 constexpr int kFlatPatience = 3;       // optimal: stop after this many L without gain
 constexpr int kMinScan = 16;           // fixed methods: scan at least L = 1..16 ...
 constexpr double kScanFactor = 2.0;    // ... and up to 2 L_best + kScanExtra
@@ -161,17 +161,27 @@ SizeChoice choose_cell_sizes(const Distribution& dist, const ModelParams& p, Cel
   if (levels) check_levels(*levels);
   const detail::CostModel cm(dist, p);
   if (levels) return make_choice(cm, sizes_by(cm, method, *levels, q));
+  if (!(p.K >= kMinSearchK))
+    throw InputError("K", "the best number of levels is searched only for K >= " + format_number(kMinSearchK) + " (got " +
+                              format_number(p.K) + "): with cheaper cell accesses more levels keep paying; give a fixed number of levels");
+  const auto at_cap = [&](int cap) {
+    return InputError("K", "no best number of levels up to " + std::to_string(cap) + " (K = " + format_number(p.K) +
+                               "): more levels keep paying; give a fixed number of levels or a larger K");
+  };
 
   if (method == CellMethod::optimal) {
     std::vector<std::pair<std::vector<double>, double>> runs;
     double T_min = std::numeric_limits<double>::infinity();
     int since_gain = 0;
-    optimal_sweep(cm, kSearchCap, [&](int, const std::vector<double>& s, double T) {
+    int L_reached = 0;
+    optimal_sweep(cm, kOptimalSearchCap, [&](int L, const std::vector<double>& s, double T) {
+      L_reached = L;
       since_gain = (T < T_min * (1.0 - kLevelsFlatRelTol)) ? 0 : since_gain + 1;
       T_min = std::min(T_min, T);
       runs.emplace_back(s, T);
       return since_gain < kFlatPatience;
     });
+    if (since_gain < kFlatPatience && L_reached >= kOptimalSearchCap) throw at_cap(kOptimalSearchCap);
     for (auto& [s, T] : runs)
       if (T <= T_min * (1.0 + kLevelsFlatRelTol)) return make_choice(cm, s);
   }
@@ -183,6 +193,7 @@ SizeChoice choose_cell_sizes(const Distribution& dist, const ModelParams& p, Cel
     const double T = cm.total(sizes_by(cm, method, L, q));
     if (T < T_best) T_best = T, L_best = L;
   }
+  if (L_best == cap) throw at_cap(cap);
   return make_choice(cm, sizes_by(cm, method, L_best, q));
 }
 

@@ -24,6 +24,10 @@ struct SizeChoice {
   ModelResult model;
 };
 
+/// The smallest K for which L* is searched: below it cell accesses are so
+/// cheap that the best L runs away (K = 0: more levels always pay).
+inline constexpr double kMinSearchK = 1e-3;
+
 /// Relative tolerance that defines L* for the optimal method: the smallest L
 /// whose optimum is within this of the best over all L (extra levels collapse).
 inline constexpr double kLevelsFlatRelTol = 1e-6;
@@ -36,7 +40,9 @@ std::vector<double> cell_sizes(const Distribution& dist, const ModelParams& p, C
 
 /// Sizes and cost for `levels`, or, without it, for the best L (L*): the L
 /// with the least T (ties and, for optimal, anything within kLevelsFlatRelTol
-/// go to the smallest L). The scan stops at 5000 levels (constant method: 256).
+/// go to the smallest L). The scan stops at kMaxLevels levels (constant and
+/// optimal methods: 256); a best L at that limit, or K < kMinSearchK, throws
+/// InputError("K").
 SizeChoice choose_cell_sizes(const Distribution& dist, const ModelParams& p, CellMethod method,
                              std::optional<int> levels = std::nullopt, double q = 1.0);
 

@@ -12,34 +12,27 @@ namespace hgrid {
 namespace {
 constexpr double kTopSizeRelTol = 1e-12;  // s_L may undershoot 2 r_max by rounding
 
-std::string num(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
 void validate_sizes(const Distribution& dist, const std::vector<double>& s) {
   if (s.empty()) throw InputError("levels", "need at least one level (L >= 1)");
   for (std::size_t h = 0; h < s.size(); ++h) {
     if (!std::isfinite(s[h]) || !(s[h] > 0.0))
       throw InputError("sizes", "every cell size must be finite and > 0 (s_" + std::to_string(h + 1) +
-                                    " = " + num(s[h]) + ")");
+                                    " = " + format_number(s[h]) + ")");
     if (h > 0 && s[h] < s[h - 1])
       throw InputError("sizes", "cell sizes must be non-decreasing (s_" + std::to_string(h + 1) +
                                     " < s_" + std::to_string(h) + ")");
   }
   if (s.back() < 2.0 * dist.r_max() * (1.0 - kTopSizeRelTol))
-    throw InputError("sizes", "the largest cell size must be >= 2 r_max = " + num(2.0 * dist.r_max()) +
-                                  " (got " + num(s.back()) + ")");
+    throw InputError("sizes", "the largest cell size must be >= 2 r_max = " + format_number(2.0 * dist.r_max()) +
+                                  " (got " + format_number(s.back()) + ")");
 }
 }  // namespace
 
 void validate(const ModelParams& p) {
   if (p.d != 2 && p.d != 3) throw InputError("d", "must be 2 or 3 (got " + std::to_string(p.d) + ")");
-  if (!std::isfinite(p.nu) || !(p.nu > 0.0))
-    throw InputError("nu", "packing fraction must be finite and > 0 (got " + num(p.nu) + ")");
+  if (!(p.nu > 0.0 && p.nu <= 1.0)) throw InputError("nu", "packing fraction must be in (0, 1] (got " + format_number(p.nu) + ")");
   if (!std::isfinite(p.K) || !(p.K >= 0.0))
-    throw InputError("K", "must be finite and >= 0 (got " + num(p.K) + ")");
+    throw InputError("K", "must be finite and >= 0 (got " + format_number(p.K) + ")");
 }
 
 ModelResult evaluate_model(const Distribution& dist, const ModelParams& p,

@@ -28,13 +28,6 @@ constexpr int kGeneratorVersion = 2;
 constexpr double kGrowthStartNu = 0.35;
 /// Achieved nu must match the request to this relative error.
 
-/// Exact (round-trip) text for cache keys.
-std::string num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
 /// Short text for messages.
 std::string brief(double v) {
   char buf[40];
@@ -164,12 +157,19 @@ std::unique_ptr<Distribution> recorded_distribution(const Packing& p) {
 }
 
 
-Packing generate_packing(const PackingSpec& s) {
+double check_packing_spec(const PackingSpec& s) {
   check_spec(s);
+  check_memory("n", s.n, kGenerateBytesPerParticle, "generating a packing");
   const auto dist = make_distribution(s);
   const double rcp = estimate_rcp(s.d, *dist);
   if (s.placement == Placement::excluded && s.nu > rcp)
     throw InputError("nu", unreachable(s, rcp, "beyond jamming for excluded-volume placement"));
+  return rcp;
+}
+
+Packing generate_packing(const PackingSpec& s) {
+  const double rcp = check_packing_spec(s);
+  const auto dist = make_distribution(s);
   detail::GenRng rng(s.seed);
   Packing p;
   p.d = s.d;
@@ -214,7 +214,7 @@ Packing generate_packing(const PackingSpec& s) {
   p.num_attrs["ks_distance"] = q.ks_distance;
   p.num_attrs["ks_pvalue"] = q.ks_pvalue;
   if (std::abs(q.nu / s.nu - 1) > kNuRelTol)
-    throw std::logic_error("generate_packing: achieved nu " + num(q.nu) + " differs from " + num(s.nu));
+    throw std::logic_error("generate_packing: achieved nu " + format_number(q.nu) + " differs from " + format_number(s.nu));
   return p;
 }
 
@@ -238,9 +238,9 @@ Packing random_packing(const RandomSpec& r, const Distribution& dist) {
 
 std::string packing_key(const PackingSpec& s) {
   std::string k = "hgridlab-packing v" + std::to_string(kGeneratorVersion) + " d=" + std::to_string(s.d) +
-                  " n=" + std::to_string(s.n) + " nu=" + num(s.nu) + " dist=" + s.dist;
-  k += s.dist == "lognormal" ? " sigma=" + num(s.sigma) : " alpha=" + num(s.alpha);
-  k += " omega=" + num(s.omega) + " boundary=" + to_string(s.boundary) + " placement=" + to_string(s.placement) +
+                  " n=" + std::to_string(s.n) + " nu=" + format_number(s.nu) + " dist=" + s.dist;
+  k += s.dist == "lognormal" ? " sigma=" + format_number(s.sigma) : " alpha=" + format_number(s.alpha);
+  k += " omega=" + format_number(s.omega) + " boundary=" + to_string(s.boundary) + " placement=" + to_string(s.placement) +
        " seed=" + std::to_string(s.seed) + " equilibrate=" + (s.equilibrate ? "1" : "0");
   return k;
 }

@@ -38,6 +38,12 @@ struct PackingSpec {
 /// The radius distribution a spec names (r_min = 1). Throws InputError.
 std::unique_ptr<Distribution> make_distribution(const PackingSpec& spec);
 
+/// Checks everything about a spec that can be checked before generating:
+/// ranges, the distribution, the memory generation would need, and (excluded
+/// volume) nu against the random close packing estimate. Throws InputError
+/// naming the field; returns the estimate.
+double check_packing_spec(const PackingSpec& spec);
+
 /// Generates a packing. Radii: inverse-CDF draws (in draw order in the file);
 /// box: cubic, sized so the achieved nu equals spec.nu for those radii.
 /// Random placement: independent uniform centres (walls: each centre at least

@@ -2,7 +2,11 @@
 
 #include "packing/packing.hpp"
 
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <string>
 
 #include "grid/error.hpp"
@@ -29,6 +33,9 @@ void validate(Packing& p) {
     if (!(std::isfinite(p.radii[i]) && p.radii[i] > 0))
       throw InputError("radius", "particle " + std::to_string(i) + " has radius " + std::to_string(p.radii[i]) +
                                      " (must be finite and > 0)");
+    if (!std::isfinite(ball_volume(p.d, p.radii[i])))
+      throw InputError("radius", "particle " + std::to_string(i) + " has radius " + std::to_string(p.radii[i]) +
+                                     " (its volume overflows)");
     for (int a = 0; a < p.d; ++a) {
       double& x = p.positions[i * p.d + a];
       if (!std::isfinite(x))
@@ -41,6 +48,35 @@ void validate(Packing& p) {
       }
     }
   }
+  if (!std::isfinite(p.packing_fraction()))
+    throw InputError("radius", "the particles' volume over the box's is not a finite number (radii too large)");
+}
+
+std::uint64_t available_memory_bytes() {
+  std::ifstream in("/proc/meminfo");
+  std::string key;
+  std::uint64_t kb = 0;
+  std::string unit;
+  while (in >> key >> kb >> unit)
+    if (key == "MemAvailable:") return kb * 1024;
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && page > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) : UINT64_MAX;
+}
+
+void check_memory(const std::string& field, std::uint64_t n, double bytes_per_particle, const std::string& what) {
+  auto gib = [](double b) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g GiB", b / (1024.0 * 1024.0 * 1024.0));
+    return std::string(buf);
+  };
+  if (n > kMaxParticles)
+    throw InputError(field, std::to_string(n) + " particles is more than the " + std::to_string(kMaxParticles) +
+                                " a packing can hold");
+  const double need = static_cast<double>(n) * bytes_per_particle;
+  const double have = static_cast<double>(available_memory_bytes());
+  if (need > have)
+    throw InputError(field, what + " of " + std::to_string(n) + " particles needs about " + gib(need) +
+                                "; this machine has " + gib(have) + " available");
 }
 
 }  // namespace hgrid

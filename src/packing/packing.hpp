@@ -1,6 +1,7 @@
 // A packing: particles in a box, as stored in files and handed to the grids.
 #pragma once
 #include <array>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -44,5 +45,25 @@ struct Packing {
 /// Checks a packing (d, box, radii > 0, finite values, centres inside a walled
 /// box) and wraps periodic centres into [0, A). Throws InputError naming the field.
 void validate(Packing& p);
+
+/// The most particles a packing may hold: a grid holds at most 2^31 - 1.
+inline constexpr std::uint64_t kMaxParticles = (std::uint64_t{1} << 31) - 1;
+
+/// Peak memory per particle of the heavy steps, measured with bench_generate
+/// and bench_hgrid (3D, N = 10^5 to 10^6) and rounded up: reading a packing
+/// file, generating a packing (growth + FIRE peaks at ~410 B), and building
+/// and searching a grid on a packing read from a file.
+inline constexpr double kReadBytesPerParticle = 64;
+inline constexpr double kGenerateBytesPerParticle = 512;
+inline constexpr double kSearchBytesPerParticle = 256;
+
+/// Memory this process may still use: MemAvailable of /proc/meminfo (else
+/// the physical memory), in bytes.
+std::uint64_t available_memory_bytes();
+
+/// Refuses, before anything is allocated, work on n particles that needs more
+/// memory than the machine has available or more than kMaxParticles: throws
+/// InputError(field, ...) with the estimate and what is available.
+void check_memory(const std::string& field, std::uint64_t n, double bytes_per_particle, const std::string& what);
 
 }  // namespace hgrid

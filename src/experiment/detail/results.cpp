@@ -7,7 +7,9 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "grid/params.hpp"
 #include "io/h5.hpp"
+#include "packing/generate.hpp"
 #include "packing/packing.hpp"
 #include "io/provenance.hpp"
 #include "io/atomic_file.hpp"
@@ -15,11 +17,8 @@
 namespace hgrid::detail {
 namespace {
 
-const char* placement_name(Placement p) { return p == Placement::random ? "random" : "excluded"; }
-
 /// JSON has no NaN: unrecorded values travel as null.
 nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-double num(const nlohmann::json& j) { return j.is_null() ? std::nan("") : j.get<double>(); }
 
 std::string utc_now() {
   std::time_t t = std::time(nullptr);
@@ -42,7 +41,7 @@ nlohmann::json result_to_json(const PointResult& r) {
           {"omega", s.omega},
           {"sigma", s.sigma},
           {"boundary", to_string(s.boundary)},
-          {"placement", placement_name(s.placement)},
+          {"placement", to_string(s.placement)},
           {"seed", s.seed},
           {"equilibrate", s.equilibrate},
           {"search", to_string(r.point.search)},
@@ -67,44 +66,108 @@ nlohmann::json result_to_json(const PointResult& r) {
           {"seconds_query", r.seconds_query}};
 }
 
+namespace {
+
+// Typed reads of a journal line: every value is checked like any input
+// (type, sign, range), never trusted as written.
+const nlohmann::json& field(const nlohmann::json& j, const char* key) {
+  if (!j.is_object() || !j.contains(key)) throw InputError(key, "missing");
+  return j.at(key);
+}
+std::uint64_t count_of(const nlohmann::json& j, const char* key) {
+  const auto& v = field(j, key);
+  if (!v.is_number_unsigned()) throw InputError(key, "must be a whole number >= 0");
+  return v.get<std::uint64_t>();
+}
+double finite_of(const nlohmann::json& j, const char* key) {
+  const auto& v = field(j, key);
+  if (!v.is_number() || !std::isfinite(v.get<double>())) throw InputError(key, "must be a finite number");
+  return v.get<double>();
+}
+double optional_of(const nlohmann::json& j, const char* key) {  // null: not recorded
+  return field(j, key).is_null() ? std::nan("") : finite_of(j, key);
+}
+std::string text_of(const nlohmann::json& j, const char* key) {
+  const auto& v = field(j, key);
+  if (!v.is_string()) throw InputError(key, "must be a string");
+  return v.get<std::string>();
+}
+std::vector<std::uint64_t> counts_of(const nlohmann::json& j, const char* key) {
+  const auto& v = field(j, key);
+  if (!v.is_array() || v.size() > static_cast<std::size_t>(kMaxLevels)) throw InputError(key, "must be a list of counts");
+  std::vector<std::uint64_t> out;
+  for (const auto& e : v) {
+    if (!e.is_number_unsigned()) throw InputError(key, "must be a list of whole numbers >= 0");
+    out.push_back(e.get<std::uint64_t>());
+  }
+  return out;
+}
+
+}  // namespace
+
 PointResult result_from_json(const nlohmann::json& j) {
   PointResult r;
   PackingSpec& s = r.point.packing;
-  s.d = j.at("d");
-  s.n = j.at("n");
-  s.nu = j.at("nu");
-  s.dist = j.at("dist");
-  s.alpha = j.at("alpha");
-  s.omega = j.at("omega");
-  s.sigma = j.at("sigma");
-  s.boundary = parse_boundary(j.at("boundary").get<std::string>());
-  s.placement = j.at("placement") == "random" ? Placement::random : Placement::excluded;
-  s.seed = j.at("seed");
-  s.equilibrate = j.at("equilibrate");
-  r.point.search = parse_search(j.at("search").get<std::string>());
-  r.n = j.at("n");
-  r.nu_achieved = j.at("nu_achieved");
-  r.sizes = j.at("sizes").get<std::vector<double>>();
+  s.d = static_cast<int>(count_of(j, "d"));
+  s.n = count_of(j, "n");
+  s.nu = finite_of(j, "nu");
+  s.dist = text_of(j, "dist");
+  s.alpha = finite_of(j, "alpha");
+  s.omega = finite_of(j, "omega");
+  s.sigma = finite_of(j, "sigma");
+  s.boundary = parse_boundary(text_of(j, "boundary"));
+  s.placement = parse_placement(text_of(j, "placement"));
+  s.seed = count_of(j, "seed");
+  if (!field(j, "equilibrate").is_boolean()) throw InputError("equilibrate", "must be true or false");
+  s.equilibrate = field(j, "equilibrate").get<bool>();
+  r.point.search = parse_search(text_of(j, "search"));
+  r.n = count_of(j, "n");
+  r.nu_achieved = finite_of(j, "nu_achieved");
+  const auto& sizes = field(j, "sizes");
+  if (!sizes.is_array()) throw InputError("sizes", "must be a list of numbers");
+  for (const auto& e : sizes) {
+    if (!e.is_number() || !std::isfinite(e.get<double>())) throw InputError("sizes", "must be finite numbers");
+    r.sizes.push_back(e.get<double>());
+  }
   Counters& c = r.counts;
-  c.levels = j.at("levels");
-  c.cell_accesses = j.at("cell_accesses");
-  c.narrow_phase_checks = j.at("narrow_phase_checks");
-  c.contacts = j.at("contacts");
-  c.particles_per_level = j.at("particles_per_level").get<std::vector<std::uint64_t>>();
-  c.accesses_by_level = j.at("accesses_by_level").get<std::vector<std::uint64_t>>();
-  c.checks_by_level = j.at("checks_by_level").get<std::vector<std::uint64_t>>();
-  r.T_over_N = j.at("T_over_N");
-  r.T_cd_over_N = j.at("T_cd_over_N");
-  r.T_ca_over_N = j.at("T_ca_over_N");
-  r.model_T_over_N = num(j.at("model_T_over_N"));
-  r.model_T_cd_over_N = num(j.at("model_T_cd_over_N"));
-  r.model_T_ca_over_N = num(j.at("model_T_ca_over_N"));
-  r.share_multi_lowest = num(j.at("share_multi_lowest"));
-  r.seconds_packing = j.at("seconds_packing");
-  r.seconds_sizes = j.at("seconds_sizes");
-  r.seconds_build = j.at("seconds_build");
-  r.seconds_query = j.at("seconds_query");
+  c.levels = static_cast<int>(count_of(j, "levels"));
+  c.cell_accesses = count_of(j, "cell_accesses");
+  c.narrow_phase_checks = count_of(j, "narrow_phase_checks");
+  c.contacts = count_of(j, "contacts");
+  c.particles_per_level = counts_of(j, "particles_per_level");
+  c.accesses_by_level = counts_of(j, "accesses_by_level");
+  c.checks_by_level = counts_of(j, "checks_by_level");
+  r.T_over_N = finite_of(j, "T_over_N");
+  r.T_cd_over_N = finite_of(j, "T_cd_over_N");
+  r.T_ca_over_N = finite_of(j, "T_ca_over_N");
+  r.model_T_over_N = optional_of(j, "model_T_over_N");
+  r.model_T_cd_over_N = optional_of(j, "model_T_cd_over_N");
+  r.model_T_ca_over_N = optional_of(j, "model_T_ca_over_N");
+  r.share_multi_lowest = optional_of(j, "share_multi_lowest");
+  r.seconds_packing = finite_of(j, "seconds_packing");
+  r.seconds_sizes = finite_of(j, "seconds_sizes");
+  r.seconds_build = finite_of(j, "seconds_build");
+  r.seconds_query = finite_of(j, "seconds_query");
   return r;
+}
+
+void check_result(const PointResult& r, double K) {
+  const Counters& c = r.counts;
+  const auto L = static_cast<std::size_t>(c.levels);
+  if (c.levels < 1 || r.sizes.size() != L || c.particles_per_level.size() != L || c.accesses_by_level.size() != L ||
+      c.checks_by_level.size() != L)
+    throw InputError("levels", "the per-level lists do not have one entry per level");
+  std::uint64_t n = 0, acc = 0, chk = 0;
+  for (std::size_t h = 0; h < L; ++h) {
+    n += c.particles_per_level[h];
+    acc += c.accesses_by_level[h];
+    chk += c.checks_by_level[h];
+  }
+  if (n != r.n || r.n != r.point.packing.n) throw InputError("particles_per_level", "does not add up to n");
+  if (acc != c.cell_accesses) throw InputError("accesses_by_level", "does not add up to cell_accesses");
+  if (chk != c.narrow_phase_checks) throw InputError("checks_by_level", "does not add up to narrow_phase_checks");
+  if (c.contacts > c.narrow_phase_checks) throw InputError("contacts", "more contacts than checks");
+  if (r.T_over_N != c.cost(K) / static_cast<double>(r.n)) throw InputError("T_over_N", "is not (checks + K accesses) / n");
 }
 
 namespace {

@@ -9,7 +9,14 @@
 namespace hgrid::detail {
 
 nlohmann::json result_to_json(const PointResult& r);
+/// Reads a result back (the resume journal), checking every value like any
+/// input: InputError naming the field for a wrong type, sign or range.
 PointResult result_from_json(const nlohmann::json& j);
+
+/// Checks a result's counts against each other: one entry per level in every
+/// list, the lists adding up to n, accesses and checks, and T/N equal to
+/// (checks + K accesses) / n. Throws InputError naming the field.
+void check_result(const PointResult& r, double K);
 
 /// Writes <stem>.h5 (raw counts per point and level, model values, the
 /// parameters, seeds, scene text, git hash, compiler, timings) and <stem>.csv

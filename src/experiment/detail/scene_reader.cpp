@@ -136,4 +136,14 @@ std::vector<std::string> strings(const toml::node& n, const std::string& key) {
   return out;
 }
 
+double one_number(const toml::node& n, const std::string& key) {
+  if (n.is_array()) throw InputError(key, "takes one number, not a list");
+  return numbers(n, key).front();
+}
+
+std::string one_string(const toml::node& n, const std::string& key) {
+  if (n.is_array()) throw InputError(key, "takes one string, not a list");
+  return strings(n, key).front();
+}
+
 }  // namespace hgrid::detail

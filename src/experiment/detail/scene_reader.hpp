@@ -47,6 +47,11 @@ bool flag(const toml::table& t, const std::string& sec, const std::string& key, 
 
 /// A number or a non-empty array of finite numbers, as a list (`key` names it).
 std::vector<double> numbers(const toml::node& n, const std::string& key);
+/// One number (an array, even of one, is refused: the key takes one value).
+double one_number(const toml::node& n, const std::string& key);
+/// One string (likewise).
+std::string one_string(const toml::node& n, const std::string& key);
+
 /// A string or a non-empty array of strings, as a list.
 std::vector<std::string> strings(const toml::node& n, const std::string& key);
 

@@ -15,6 +15,8 @@ HGrid<D, B>::HGrid(std::span<const Sphere<D>> spheres, const Extent<D>& box, con
     : params_(params), box_(box) {
   const auto& s = params_.sizes;
   if (s.empty()) throw InputError("sizes", "at least one cell size is needed (L >= 1)");
+  if (s.size() > static_cast<std::size_t>(kMaxLevels))
+    throw InputError("sizes", "at most " + std::to_string(kMaxLevels) + " levels (got " + std::to_string(s.size()) + ")");
   for (std::size_t h = 0; h < s.size(); ++h) {
     if (!(std::isfinite(s[h]) && s[h] > 0))
       throw InputError("sizes", "s_" + std::to_string(h + 1) + " = " + std::to_string(s[h]) + " must be finite and > 0");

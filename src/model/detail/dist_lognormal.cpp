@@ -1,5 +1,6 @@
 // Truncated log-normal: moments as closed forms in the normal CDF.
 #include <gsl/gsl_cdf.h>
+#include <gsl/gsl_sf_erf.h>
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +15,16 @@ namespace {
 constexpr double kInvSqrt2 = 0.70710678118654752440;
 double Phi(double z) { return 0.5 * std::erfc(-z * kInvSqrt2); }
 double Q(double z) { return 0.5 * std::erfc(z * kInvSqrt2); }
+/// ln Q(z), accurate far in the upper tail where Q(z) underflows.
+double log_Q(double z) { return std::log(0.5) + gsl_sf_log_erfc(z * kInvSqrt2); }
+
+/// ln of the normal mass on [za, zb], za < zb, without underflow in either
+/// tail (the moments of a wide log-normal shift z by k sigma, far into a tail).
+double log_mass(double za, double zb) {
+  if (za >= 0.0) return log_Q(za) + std::log1p(-std::exp(log_Q(zb) - log_Q(za)));
+  if (zb <= 0.0) return log_Q(-zb) + std::log1p(-std::exp(log_Q(-za) - log_Q(-zb)));
+  return std::log(Phi(zb) - Phi(za));
+}
 }  // namespace
 
 LogNormal::LogNormal(double mu, double sigma, double r_min, double r_max)
@@ -69,7 +80,9 @@ double LogNormal::moment(double k, double a, double b) const {
   // log-normal density with mean mu + k sigma^2.
   const double za = (std::log(a) - mu_) / sigma_ - k * sigma_;
   const double zb = (std::log(b) - mu_) / sigma_ - k * sigma_;
-  return std::exp(k * mu_ + 0.5 * k * k * sigma_ * sigma_) * mass(za, zb) / norm_;
+  // In logarithms: for a wide distribution the factor overflows while the
+  // mass underflows, and their product is an ordinary number.
+  return std::exp(k * mu_ + 0.5 * k * k * sigma_ * sigma_ + log_mass(za, zb) - log_mass(zlo_, zhi_));
 }
 
 }  // namespace hgrid
