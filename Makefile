@@ -5,7 +5,7 @@ JOBS  ?= $(shell nproc 2>/dev/null || echo 2)
 SCALE ?= default
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: all build test test-asan test-clang figures bench deps clean calibrate calibrate-figure
+.PHONY: all build test test-asan test-clang fuzz figures bench deps clean calibrate calibrate-figure
 
 all: build
 
@@ -38,6 +38,15 @@ test-clang:
 	cmake --build build-clang -j $(JOBS) --target hgrid_tests hgrid
 	cd build-clang && ctest --output-on-failure -j $(JOBS)
 
+# The libFuzzer targets of the readers (CSV, HDF5, scene, journal), built with
+# clang++ and run FUZZ_SECONDS each (needs Debian's clang).
+FUZZ_SECONDS ?= 60
+fuzz:
+	CXX=clang++ CC=clang cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHGRID_FUZZ=ON \
+	  -DHGRID_BUILD_TESTS=OFF -DHGRID_BUILD_BENCH=OFF -DHGRID_BUILD_CLI=OFF
+	cmake --build build-fuzz -j $(JOBS) --target fuzz_csv fuzz_hdf5 fuzz_scene fuzz_journal
+	bash tests/fuzz/run.sh build-fuzz $(FUZZ_SECONDS)
+
 # Figures 2-10 (cost model), then 11-12 (scenes on generated packings).
 figures: build
 	bash plots/make_figures.sh $(SCALE)
@@ -56,4 +65,4 @@ bench: build
 	@for b in $(BUILD)/bench_*; do echo "== $$b"; $$b --benchmark_counters_tabular=true || exit 1; done
 
 clean:
-	rm -rf $(BUILD) build-asan build-clang
+	rm -rf $(BUILD) build-asan build-clang build-fuzz

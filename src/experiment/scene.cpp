@@ -124,9 +124,13 @@ std::string scene_kind(const std::string& path) {
 }
 
 Scene load_scene(const std::string& path, const std::string& scale) {
+  return load_scene_text(detail::read_scene_file(path).text, scale, path);
+}
+
+Scene load_scene_text(const std::string& text, const std::string& scale, const std::string& name) {
   Scene s;
   detail::check_scale_name(scale);
-  detail::SceneFile file = detail::read_scene_file(path);
+  detail::SceneFile file = detail::parse_scene_text(text, name);
   const toml::table& root = file.root;
   s.source = std::move(file.text);
   s.scale = scale;

@@ -50,4 +50,7 @@ std::string scene_kind(const std::string& path);
 /// keys and out-of-range values throw InputError naming the key.
 Scene load_scene(const std::string& path, const std::string& scale);
 
+/// The same from the scene's text (`name` names it in messages).
+Scene load_scene_text(const std::string& text, const std::string& scale, const std::string& name);
+
 }  // namespace hgrid

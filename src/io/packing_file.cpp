@@ -101,9 +101,7 @@ Packing read_h5(const std::string& path) {
 
 // ---- CSV -------------------------------------------------------------------
 
-Packing read_csv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError("file", "cannot open '" + path + "'");
+Packing parse_csv(std::istream& in, const std::string& path) {
   Packing p;
   bool have_box = false, have_header = false;
   std::string line;
@@ -163,6 +161,12 @@ Packing read_csv(const std::string& path) {
   }
   if (!have_header) throw InputError("header", "no 'x,y,r' or 'x,y,z,r' header in " + path);
   return p;
+}
+
+Packing read_csv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError("file", "cannot open '" + path + "'");
+  return parse_csv(in, path);
 }
 
 // ---- HDF5 in a child process ------------------------------------------------
@@ -245,6 +249,9 @@ Packing read_h5_in_child(const std::string& path) {
   if (pid < 0) throw std::runtime_error("fork failed");
   if (pid == 0) {  // the child: read, send, and leave without running atexit handlers
     ::close(fd[0]);
+    // The default actions, not the caller's handlers (a fuzzer or a sanitizer
+    // has some): a crash or the alarm ends the child, and the parent sees it.
+    for (int sig : {SIGALRM, SIGSEGV, SIGBUS, SIGABRT, SIGFPE, SIGILL}) std::signal(sig, SIG_DFL);
     ::alarm(limit);
     std::string msg;
     try {
@@ -284,7 +291,8 @@ Packing read_h5_in_child(const std::string& path) {
                                                               : "crashed reading it (signal " +
                                                                     std::to_string(WTERMSIG(status)) + ")"));
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || msg.empty())
-    throw std::runtime_error("isolated HDF5 read of '" + path + "' failed");
+    throw InputError("file", "'" + path + "' is corrupt: the HDF5 library failed reading it (exit status " +
+                                 std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) + ")");
   if (msg[0] == 'E') {
     Reader r{msg, 1};
     const std::string field = r.str(), what = r.str();
@@ -302,6 +310,12 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 }
 
 }  // namespace
+
+Packing parse_packing_csv(std::istream& in, const std::string& name) {
+  Packing p = parse_csv(in, name);
+  validate(p);
+  return p;
+}
 
 Packing read_packing(const std::string& path, Isolation isolation) {
   if (!std::filesystem::exists(path)) throw InputError("file", "'" + path + "' does not exist");

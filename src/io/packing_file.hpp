@@ -1,5 +1,6 @@
 // Packing files: read any supported format, write HDF5 with provenance.
 #pragma once
+#include <istream>
 #include <string>
 
 #include "packing/packing.hpp"
@@ -20,6 +21,10 @@ inline constexpr double kIsolatedReadBaseSeconds = 5;
 /// validates it (see validate()) and returns it. Throws InputError naming the
 /// field that is wrong.
 Packing read_packing(const std::string& path, Isolation isolation = Isolation::none);
+
+/// Reads a packing from CSV text (the format of read_packing's .csv files);
+/// `name` names the source in messages.
+Packing parse_packing_csv(std::istream& in, const std::string& name);
 
 /// Writes a packing as HDF5 (datasets /positions N x d and /radii N; root
 /// attributes d, box, boundary, the packing's own attributes and the

@@ -13,12 +13,16 @@ SceneFile read_scene_file(const std::string& path) {
   if (!in) throw InputError("scene", "cannot open '" + path + "'");
   std::stringstream buf;
   buf << in.rdbuf();
+  return parse_scene_text(buf.str(), path);
+}
+
+SceneFile parse_scene_text(const std::string& text, const std::string& name) {
   try {
-    return {buf.str(), toml::parse(buf.str(), path)};
+    return {text, toml::parse(text, name)};
   } catch (const toml::parse_error& e) {
     std::ostringstream msg;
     msg << e.description() << " at line " << e.source().begin.line;
-    throw InputError("scene", msg.str() + " in " + path);
+    throw InputError("scene", msg.str() + " in " + name);
   }
 }
 

@@ -21,6 +21,8 @@ struct SceneFile {
 
 /// Reads and parses a scene file; InputError("scene", ...) if unreadable.
 SceneFile read_scene_file(const std::string& path);
+/// Parses a scene's text; `name` names it in messages.
+SceneFile parse_scene_text(const std::string& text, const std::string& name);
 
 /// Throws InputError(where + key, ...) for any key of `t` not in `allowed`,
 /// listing the allowed keys.
