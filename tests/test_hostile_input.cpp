@@ -39,7 +39,7 @@ class Hostile : public TempDir {
       EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
   }
   static constexpr double kSecondsBadInput = 20;  // generous for sanitizer builds; release: < 1 s
-  static constexpr std::size_t kMutationStride = 11;  // every 11th byte: ~670 files
+  static constexpr std::size_t kMutationStride = 29;  // every 29th byte: ~250 files (a fork each)
 };
 
 // ---- HDF5 files written by other tools (h5py) --------------------------------

@@ -213,10 +213,8 @@ void run_dpm_scene(const std::string& path, const std::string& scale, const RunO
       {"seconds_per_access", c_access},
       {"K_effective", c_access / c_check},
       {"haff", {{"t0", haff.t0}, {"E0", haff.E0}, {"r2", haff.r2}}},
-      {"version", version()},
-      {"git_hash", git_hash()},
-      {"compiler", compiler_id()},
   };
+  for (const auto& [k, v] : provenance_fields()) out[k] = v;
 
   std::filesystem::create_directories(opt.results_dir);
   const std::string stem = opt.results_dir + "/" + sc.name + (scale == "default" ? "" : "-" + scale);

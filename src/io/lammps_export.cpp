@@ -46,7 +46,7 @@ std::vector<double> geometric_collections(const Packing& p, int k, double smalle
 std::string lammps_data(const Packing& p) {
   check(p);
   const bool walls = p.boundary == Boundary::walls;
-  std::string out = "LAMMPS data file (atom_style sphere) written by hgridlab " + std::string(git_hash()) + "\n\n";
+  std::string out = "LAMMPS data file (atom_style sphere) written by hgridlab " + std::string(version()) + " " + git_hash() + "\n\n";
   out += std::to_string(p.size()) + " atoms\n1 atom types\n\n";
   const char* ax[3] = {"x", "y", "z"};
   for (int a = 0; a < 3; ++a) {
@@ -72,7 +72,7 @@ std::string lammps_input(const Packing& p, const LammpsScript& s) {
   check(p);
   if (s.builds < 1) throw InputError("builds", "must be >= 1");
   std::ostringstream o;
-  o << "# hgridlab " << git_hash() << ": LAMMPS neighbour-list builds on an exported packing\n"
+  o << "# hgridlab (" << provenance_line() << "): LAMMPS neighbour-list builds on an exported packing\n"
     << "# n = " << p.size() << ", d = " << p.d << ", " << to_string(p.boundary) << ", neighbor " << to_string(s.neighbor)
     << "\n# Per-pair cutoff r_i + r_j (granular size list), zero skin, rebuilt every step;\n"
     << "# no integrator: the particles never move. Read 'Neigh' time / 'Neighbor list builds'\n"

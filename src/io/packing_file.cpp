@@ -31,7 +31,7 @@ using namespace detail;
 /// (what the generator records, and the provenance). Read by name: a file's
 /// other attributes are never iterated, so a corrupt attribute table cannot
 /// reach the reader.
-const char* const kStringAttrs[] = {"cache_key", "dist", "placement", "seed_str", "method", "git_hash", "compiler",
+const char* const kStringAttrs[] = {"cache_key", "dist", "placement", "seed_str", "method", "git_hash", "compiler", "build_flags",
                                     "version"};
 const char* const kNumberAttrs[] = {"seed", "n", "nu", "alpha", "omega", "sigma", "equilibrate", "generator_version",
                                     "rcp_estimate", "nu_achieved", "max_rel_overlap", "mean_rel_overlap",
@@ -337,8 +337,8 @@ void write_packing(const std::string& path, const Packing& p) {
     detail::h5_write_attr(root.id, "boundary", std::string(to_string(p.boundary)));
     for (const auto& [k, v] : p.num_attrs) detail::h5_write_attr(root.id, k, std::vector<double>{v});
     for (const auto& [k, v] : p.str_attrs) detail::h5_write_attr(root.id, k, v);
-    if (!p.str_attrs.count("git_hash")) detail::h5_write_attr(root.id, "git_hash", std::string(git_hash()));
-    if (!p.str_attrs.count("compiler")) detail::h5_write_attr(root.id, "compiler", std::string(compiler_id()));
+    for (const auto& [k, v] : provenance_fields())
+      if (!p.str_attrs.count(k)) detail::h5_write_attr(root.id, k, v);
   });
 }
 

@@ -1,6 +1,8 @@
 // Where a result came from: the one provenance record every output carries.
 #pragma once
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace hgrid {
 
@@ -19,5 +21,19 @@ struct Provenance {
 };
 
 inline Provenance provenance() { return {version(), git_hash(), compiler_id(), build_flags()}; }
+
+/// The record as named fields, in the order every output writes them
+/// (HDF5 attributes, JSON keys, "# key=value" lines).
+inline std::vector<std::pair<std::string, std::string>> provenance_fields() {
+  return {{"version", version()}, {"git_hash", git_hash()}, {"compiler", compiler_id()}, {"build_flags", build_flags()}};
+}
+
+/// The record on one line ("version=... git_hash=... compiler=... build_flags=..."),
+/// for text outputs.
+inline std::string provenance_line() {
+  std::string out;
+  for (const auto& [k, v] : provenance_fields()) out += (out.empty() ? "" : " ") + k + "=" + v;
+  return out;
+}
 
 }  // namespace hgrid

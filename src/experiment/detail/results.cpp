@@ -182,7 +182,7 @@ const char* const kTextColumns[] = {"dist", "boundary", "placement", "search"};
 
 void write_csv(const std::string& path, const Scene& scene, const std::vector<nlohmann::json>& rows) {
   write_stream_atomically(path, [&](std::ostream& out) {
-    out << "# scene=" << scene.name << " scale=" << scene.scale << " git_hash=" << git_hash() << "\n";
+    out << "# scene=" << scene.name << " scale=" << scene.scale << " " << provenance_line() << "\n";
     std::string header;
     for (const char* c : kTextColumns) header += std::string(header.empty() ? "" : ",") + c;
     for (const char* c : kNumericColumns) header += std::string(",") + c;
@@ -257,8 +257,7 @@ void write_results(const std::string& stem, const Scene& scene, const std::vecto
     h5_write_attr(root.id, "K", std::vector<double>{scene.grid.K});
     h5_write_attr(root.id, "q", std::vector<double>{scene.grid.q});
     h5_write_attr(root.id, "levels_requested", std::vector<double>{scene.grid.levels ? *scene.grid.levels : 0.0});
-    h5_write_attr(root.id, "git_hash", std::string(git_hash()));
-    h5_write_attr(root.id, "compiler", std::string(compiler_id()));
+    for (const auto& [k, v] : provenance_fields()) h5_write_attr(root.id, k, v);
     h5_write_attr(root.id, "created_utc", utc_now());
     h5_write_attr(root.id, "matrix_layout", std::string("[point][level of the particle][level searched]"));
   });
