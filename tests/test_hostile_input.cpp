@@ -44,6 +44,18 @@ class Hostile : public TempDir {
 
 // ---- HDF5 files written by other tools (h5py) --------------------------------
 
+/// A fixed-length string attribute of `width` bytes (numpy's S<width>).
+void write_fixed_string(hid_t obj, const char* name, const char* text, std::size_t width,
+                        H5T_str_t pad = H5T_STR_NULLTERM) {
+  const hid_t t = H5Tcopy(H5T_C_S1);
+  H5Tset_size(t, width);
+  H5Tset_strpad(t, pad);
+  const hid_t sp = H5Screate(H5S_SCALAR);
+  const hid_t a = H5Acreate2(obj, name, t, sp, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(a, t, text);
+  H5Aclose(a), H5Sclose(sp), H5Tclose(t);
+}
+
 /// A 2D walled packing of two disks with the boundary attribute written by
 /// `write_boundary` (as h5py would) and d written as an integer.
 template <class WriteBoundary>
@@ -92,27 +104,14 @@ TEST_F(Hostile, H5pyVariableLengthUtf8StringIsRead) {
 
 TEST_F(Hostile, FixedLengthStringWithoutTerminatorKeepsItsLastCharacter) {
   write_foreign_h5(path("fixed.h5"), [](hid_t root) {
-    const hid_t t = H5Tcopy(H5T_C_S1);
-    H5Tset_size(t, 5);  // "walls" fills the whole width: numpy's S5
-    H5Tset_strpad(t, H5T_STR_NULLPAD);
-    const hid_t sp = H5Screate(H5S_SCALAR);
-    const hid_t a = H5Acreate2(root, "boundary", t, sp, H5P_DEFAULT, H5P_DEFAULT);
-    H5Awrite(a, t, "walls");
-    H5Aclose(a), H5Sclose(sp), H5Tclose(t);
+    write_fixed_string(root, "boundary", "walls", 5, H5T_STR_NULLPAD);  // fills the whole width: numpy's S5
   });
   EXPECT_EQ(read_packing(path("fixed.h5")).boundary, Boundary::walls);
 }
 
 TEST_F(Hostile, WrittenFilesUseTypesH5pyReadsWithoutSurprise) {
   // Strings variable-length UTF-8 (h5py: str), d an integer (h5py: int).
-  write_foreign_h5(path("in.h5"), [](hid_t root) {
-    const hid_t t = H5Tcopy(H5T_C_S1);
-    H5Tset_size(t, 6);
-    const hid_t sp = H5Screate(H5S_SCALAR);
-    const hid_t a = H5Acreate2(root, "boundary", t, sp, H5P_DEFAULT, H5P_DEFAULT);
-    H5Awrite(a, t, "walls");
-    H5Aclose(a), H5Sclose(sp), H5Tclose(t);
-  });
+  write_foreign_h5(path("in.h5"), [](hid_t root) { write_fixed_string(root, "boundary", "walls", 6); });
   write_packing(path("out.h5"), read_packing(path("in.h5")));
   const hid_t f = H5Fopen(path("out.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   const hid_t root = H5Gopen2(f, "/", H5P_DEFAULT);
@@ -135,12 +134,7 @@ TEST_F(Hostile, NonIntegerDimensionIsRefused) {
     const hid_t a = H5Acreate2(root, "d", H5T_IEEE_F64LE, sp, H5P_DEFAULT, H5P_DEFAULT);
     H5Awrite(a, H5T_NATIVE_DOUBLE, &d);
     H5Aclose(a), H5Sclose(sp);
-    const hid_t t = H5Tcopy(H5T_C_S1);
-    H5Tset_size(t, 6);
-    const hid_t sp2 = H5Screate(H5S_SCALAR);
-    const hid_t b = H5Acreate2(root, "boundary", t, sp2, H5P_DEFAULT, H5P_DEFAULT);
-    H5Awrite(b, t, "walls");
-    H5Aclose(b), H5Sclose(sp2), H5Tclose(t);
+    write_fixed_string(root, "boundary", "walls", 6);
   });
   expect_refused("info " + path("d.h5"), "d:");
 }
@@ -168,11 +162,7 @@ void write_declaring(const std::string& path, hsize_t rows) {
   sp = H5Screate_simple(1, &three, nullptr);
   a = H5Acreate2(root, "box", H5T_IEEE_F64LE, sp, H5P_DEFAULT, H5P_DEFAULT);
   H5Awrite(a, H5T_NATIVE_DOUBLE, box), H5Aclose(a), H5Sclose(sp);
-  const hid_t t = H5Tcopy(H5T_C_S1);
-  H5Tset_size(t, 9);
-  sp = H5Screate(H5S_SCALAR);
-  a = H5Acreate2(root, "boundary", t, sp, H5P_DEFAULT, H5P_DEFAULT);
-  H5Awrite(a, t, "periodic"), H5Aclose(a), H5Sclose(sp), H5Tclose(t);
+  write_fixed_string(root, "boundary", "periodic", 9);
   H5Gclose(root), H5Fclose(f);
 }
 
