@@ -33,3 +33,5 @@ plot() {
 }
 plot plots/fig11.gp "results/fig11$suffix.csv" fig11-measured-vs-model-nu "$(values "results/fig11$suffix.csv" omega)"
 plot plots/fig12.gp "results/fig12$suffix.csv" fig12-measured-vs-model-n "$(values "results/fig12$suffix.csv" alpha | tr ' ' '\n' | sort -gr | tr '\n' ' ')"
+bash plots/model_errors.sh "$scale"
+bash plots/excess_by_level.sh "$scale"

@@ -1,4 +1,5 @@
-# Figure 11: T/N measured (symbols) vs model (lines) against nu; alpha = -3.
+# Figure 11: T/N measured (symbols) vs the paper's model (solid) and the
+# excluded-volume model (dashed) against nu; alpha = -3.
 # gnuplot -e "in='results/fig11.csv'; out='paper_figs/fig11-measured-vs-model-nu.png'; fmt='png'" plots/fig11.gp
 if (!exists("fmt")) fmt = 'png'
 if (fmt eq 'pdf') { set terminal pdfcairo enhanced size 6in,4.2in font 'Helvetica,11' } \
@@ -16,7 +17,9 @@ set title sprintf('Fig. 11: {/Symbol a} = -3, d = 3, optimal Top-Down sizes (%s)
 sel(p, w, v) = (strcol("placement") eq p && abs(column("omega") - w) < 1e-9) ? v : NaN
 omegas = exists("series") ? series : "2 10 50 100"
 plot for [i=1:words(omegas)] in using (sel("excluded", real(word(omegas,i)), column("nu"))):"model_T_over_N" \
-       with lines lw 2 lc i title sprintf('model, {/Symbol w} = %s', word(omegas,i)), \
+       with lines lw 2 lc i title sprintf('paper model, {/Symbol w} = %s', word(omegas,i)), \
+     for [i=1:words(omegas)] in using (sel("excluded", real(word(omegas,i)), column("nu"))):"model_excluded_T_over_N" \
+       with lines lw 2 dt 2 lc i title sprintf('excluded-volume model, {/Symbol w} = %s', word(omegas,i)), \
      for [i=1:words(omegas)] in using (sel("excluded", real(word(omegas,i)), column("nu"))):"T_over_N" \
        with points pt 7 ps 1.2 lc i title sprintf('excluded volume, {/Symbol w} = %s', word(omegas,i)), \
      for [i=1:words(omegas)] in using (sel("random", real(word(omegas,i)), column("nu"))):"T_over_N" \

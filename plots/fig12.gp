@@ -17,7 +17,11 @@ set title sprintf('Fig. 12: {/Symbol n} = 0.6, {/Symbol w} = 10, d = 3, optimal 
 sel(b, a, v) = (strcol("boundary") eq b && abs(column("alpha") - a) < 1e-9) ? v : NaN
 alphas = exists("series") ? series : "0 -1 -2 -3"
 plot for [i=1:words(alphas)] in using (sel("periodic", real(word(alphas,i)), column("n"))):"model_T_over_N" \
-       with lines lw 2 lc i title sprintf('model, {/Symbol a} = %s', word(alphas,i)), \
+       with lines lw 2 lc i title sprintf('paper model, {/Symbol a} = %s', word(alphas,i)), \
+     for [i=1:words(alphas)] in using (sel("periodic", real(word(alphas,i)), column("n"))):"model_excluded_T_over_N" \
+       with lines lw 2 dt 2 lc i title sprintf('excluded-volume model, periodic, {/Symbol a} = %s', word(alphas,i)), \
+     for [i=1:words(alphas)] in using (sel("walls", real(word(alphas,i)), column("n"))):"model_excluded_T_over_N" \
+       with lines lw 1 dt 3 lc i title sprintf('excluded-volume model, walls, {/Symbol a} = %s', word(alphas,i)), \
      for [i=1:words(alphas)] in using (sel("walls", real(word(alphas,i)), column("n"))):"T_over_N" \
        with points pt 6 ps 1.4 lc i title sprintf('walls, {/Symbol a} = %s', word(alphas,i)), \
      for [i=1:words(alphas)] in using (sel("periodic", real(word(alphas,i)), column("n"))):"T_over_N" \

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cli/common.hpp"
+#include "packing/packing_model.hpp"
 #include "packing/packing_sizes.hpp"
 #include "grid/brute_force.hpp"
 #include "experiment/calibration.hpp"
@@ -64,6 +65,8 @@ void add_grid_options(CLI::App* sub, GridOptions& o) {
   sub->add_option("--q", o.request.q, "with --cells constant: ratio of particles per cell between levels")
       ->default_val(1.0);
   sub->add_option("--search", o.search, "cross-level search: topdown|bottomup")->default_val("topdown");
+  sub->add_flag("--excluded-sizes", o.request.excluded_model,
+                "with --cells optimal: refine the sizes under the excluded-volume model (hard-sphere packings, 3D)");
 }
 
 GridParams resolve(const GridOptions& o, const Packing& p, double K) {
@@ -118,6 +121,17 @@ nlohmann::json count_json(const Packing& p, const GridParams& g, const std::vect
   j["T_over_N"] = n > 0 ? c.cost(K) / n : 0.0;
   j["T_cd_over_N"] = n > 0 ? static_cast<double>(c.narrow_phase_checks) / n : 0.0;
   j["T_ca_over_N"] = n > 0 ? static_cast<double>(c.cell_accesses) / n : 0.0;
+  const PackingModels models = model_for_packing(p, used, g.search, K);
+  j["model_T_over_N"] = models.random.T_over_N;
+  j["model_T_cd_over_N"] = models.random.T_cd_over_N;
+  j["model_T_ca_over_N"] = models.random.T_ca_over_N;
+  if (models.excluded) {
+    j["model_excluded_T_over_N"] = models.excluded->T_over_N;
+    j["model_excluded_T_cd_over_N"] = models.excluded->T_cd_over_N;
+  } else {
+    j["model_excluded_T_over_N"] = nullptr;
+    j["model_excluded_skipped"] = models.excluded_skipped;
+  }
   json levels = json::array();
   const int L = c.levels;
   for (int h = 0; h < L; ++h) {
@@ -137,6 +151,14 @@ nlohmann::json count_json(const Packing& p, const GridParams& g, const std::vect
     row["narrow_phase_checks"] = chk;
     row["cell_accesses_by_level_searched"] = acc_row;
     row["narrow_phase_checks_by_level_searched"] = chk_row;
+    // The models' expected checks (counts, like the measurement).
+    json mr = json::array(), me = json::array();
+    for (int k = 0; k < L; ++k) {
+      mr.push_back(n * models.random.T_cd_pair[h * L + k]);
+      if (models.excluded) me.push_back(n * models.excluded->T_cd_pair[h * L + k]);
+    }
+    row["model_narrow_phase_checks_by_level_searched"] = mr;
+    if (models.excluded) row["model_excluded_narrow_phase_checks_by_level_searched"] = me;
     levels.push_back(row);
   }
   j["per_level"] = levels;
@@ -149,14 +171,28 @@ void print_count_table(const nlohmann::json& j) {
   std::printf("n = %zu, d = %d, %s, nu = %.6g, search %s, K = %g\n", j["n"].get<std::size_t>(), j["d"].get<int>(),
               j["boundary"].get<std::string>().c_str(), j["packing_fraction"].get<double>(),
               j["search"].get<std::string>().c_str(), j["K"].get<double>());
-  std::printf("%5s %14s %12s %16s %20s\n", "level", "size", "particles", "cell_accesses", "narrow_phase_checks");
-  for (const auto& row : j["per_level"])
-    std::printf("%5d %14.6g %12llu %16llu %20llu\n", row["level"].get<int>(), row["size"].get<double>(),
+  const bool ex = !j["model_excluded_T_over_N"].is_null();
+  // The models' columns: expected narrow-phase checks of the level's particles.
+  std::printf("%5s %14s %12s %16s %20s %14s %16s\n", "level", "size", "particles", "cell_accesses", "narrow_phase_checks",
+              "model_checks", "excluded_checks");
+  for (const auto& row : j["per_level"]) {
+    double mr = 0, me = 0;
+    for (const auto& v : row["model_narrow_phase_checks_by_level_searched"]) mr += v.get<double>();
+    if (ex)
+      for (const auto& v : row["model_excluded_narrow_phase_checks_by_level_searched"]) me += v.get<double>();
+    std::printf("%5d %14.6g %12llu %16llu %20llu %14.6g %16s\n", row["level"].get<int>(), row["size"].get<double>(),
                 row["particles"].get<unsigned long long>(), row["cell_accesses"].get<unsigned long long>(),
-                row["narrow_phase_checks"].get<unsigned long long>());
+                row["narrow_phase_checks"].get<unsigned long long>(), mr,
+                ex ? std::to_string(me).c_str() : "-");
+  }
   std::printf("total: %llu cell accesses, %llu narrow-phase checks, %llu contacts, T/N = %.6g\n",
               j["cell_accesses"].get<unsigned long long>(), j["narrow_phase_checks"].get<unsigned long long>(),
               j["contacts"].get<unsigned long long>(), j["T_over_N"].get<double>());
+  std::printf("model T/N = %.6g (random centres)", j["model_T_over_N"].get<double>());
+  if (ex)
+    std::printf(", %.6g (excluded volume)\n", j["model_excluded_T_over_N"].get<double>());
+  else
+    std::printf("; excluded-volume model: %s\n", j["model_excluded_skipped"].get<std::string>().c_str());
 }
 
 void run_count(const GridOptions& o, const std::string& K_text, int repeat, bool as_json) {

@@ -12,6 +12,8 @@
 #include "io/atomic_file.hpp"
 #include "experiment/calibration.hpp"
 #include "model/cell_sizes.hpp"
+#include "model/excluded.hpp"
+#include "packing/generate.hpp"
 #include "model/figures.hpp"
 #include "grid/error.hpp"
 #include "packing/packing.hpp"
@@ -24,9 +26,9 @@ namespace {
 struct ModelOptions {
   int d = 3;
   double nu = 0.7, alpha = -3.0, omega = 100.0, q = 1.0, sigma = 1.0;
-  std::string K = "0.2", search = "topdown", cells = "optimal", dist = "powerlaw", radii_file;
+  std::string K = "0.2", search = "topdown", cells = "optimal", dist = "powerlaw", radii_file, placement = "random";
   int levels = 0;  // 0: search L*
-  bool json = false;
+  bool json = false, excluded_sizes = false;
 };
 
 /// Radii from an HDF5 packing (.h5/.hdf5) or a text file: the last number
@@ -75,7 +77,20 @@ void run_model(const ModelOptions& o) {
                                         o.levels > 0 ? std::optional<int>(o.levels) : std::nullopt, o.q);
   std::vector<double> sizes;  // in units of r_min
   for (double s : choice.sizes) sizes.push_back(s / dist->r_min());
-  const ModelResult& m = choice.model;
+  const bool excluded = parse_placement(o.placement, "placement") == Placement::excluded;
+  // The paper's model (random centres) chooses the sizes; with --placement
+  // excluded the excluded-volume model is evaluated for the same sizes.
+  if (o.excluded_sizes && !excluded) throw InputError("excluded-sizes", "needs --placement excluded");
+  ModelResult m = excluded ? evaluate_excluded_model(*dist, p, choice.sizes) : choice.model;
+  const double T_excluded_paper_sizes = m.T_over_N;
+  int evaluations = 0;
+  if (o.excluded_sizes) {  // refine the paper's sizes under the excluded-volume model
+    ExcludedSizes r = refine_sizes_excluded(*dist, p, choice.sizes);
+    m = r.model;
+    evaluations = r.evaluations;
+    sizes.clear();
+    for (double s : r.sizes) sizes.push_back(s / dist->r_min());
+  }
   if (o.json) {
     nlohmann::json j;
     j["levels"] = choice.levels;
@@ -83,19 +98,30 @@ void run_model(const ModelOptions& o) {
     j["T_over_N"] = m.T_over_N;
     j["T_cd_over_N"] = m.T_cd_over_N;
     j["T_ca_over_N"] = m.T_ca_over_N;
+    if (excluded) j["T_over_N_random"] = choice.model.T_over_N;
+    if (o.excluded_sizes) {
+      j["T_over_N_excluded_paper_sizes"] = T_excluded_paper_sizes;
+      j["excluded_size_evaluations"] = evaluations;
+    }
+    j["T_cd_per_level"] = m.T_cd;
     j["P"] = m.P;
     j["m"] = m.m;
     j["params"] = {{"d", p.d}, {"nu", p.nu}, {"K", p.K}, {"search", to_string(p.search)},
                    {"cells", to_string(method)}, {"q", o.q}, {"omega", dist->omega()},
                    {"dist", o.radii_file.empty() ? o.dist : "empirical"},
-                   {"levels_searched", o.levels == 0}};
+                   {"levels_searched", o.levels == 0}, {"placement", o.placement}};
     if (o.radii_file.empty() && o.dist == "powerlaw") j["params"]["alpha"] = o.alpha;
     if (o.radii_file.empty() && o.dist == "lognormal") j["params"]["sigma"] = o.sigma;
     std::cout << j.dump(2) << "\n";
     return;
   }
-  std::printf("levels L = %d (%s)\nT/N = %.6f  (T_cd/N = %.6f, T_ca/N = %.6f, K = %g)\n", choice.levels,
-              o.levels == 0 ? "best L*" : "given", m.T_over_N, m.T_cd_over_N, m.T_ca_over_N, p.K);
+  std::printf("levels L = %d (%s)\nT/N = %.6f  (T_cd/N = %.6f, T_ca/N = %.6f, K = %g)%s\n", choice.levels,
+              o.levels == 0 ? "best L*" : "given", m.T_over_N, m.T_cd_over_N, m.T_ca_over_N, p.K,
+              excluded ? "  excluded-volume model" : "");
+  if (excluded && !o.excluded_sizes) std::printf("random-centre model for the same sizes: T/N = %.6f\n", choice.model.T_over_N);
+  if (o.excluded_sizes)
+    std::printf("sizes refined under the excluded-volume model (%d evaluations); with the paper's sizes T/N = %.6f\n",
+                evaluations, T_excluded_paper_sizes);
   std::printf("%5s %14s %12s %12s\n", "h", "s_h/r_min", "P_h", "m_h");
   for (int h = 0; h < choice.levels; ++h)
     std::printf("%5d %14.6g %12.6g %12.6g\n", h + 1, sizes[h], m.P[h], m.m[h]);
@@ -120,6 +146,11 @@ void register_model_commands(CLI::App& app) {
   sub->add_option("--sigma", o->sigma, "log-normal: standard deviation of ln r, > 0")->capture_default_str();
   sub->add_option("--radii", o->radii_file,
                   "use the radii of FILE instead (HDF5 packing, or text: last number per line)");
+  sub->add_option("--placement", o->placement,
+                  "random (the paper's model) | excluded (hard-sphere packing: Percus-Yevick pair structure, 3D)")
+      ->capture_default_str();
+  sub->add_flag("--excluded-sizes", o->excluded_sizes,
+               "with --placement excluded: refine the sizes to minimise the excluded-volume model (slow at omega >= 50)");
   sub->add_flag("--json", o->json, "print JSON: levels, sizes (units of r_min), T_over_N, ...");
   sub->callback([o, lv] {
     if (lv->count() > 0 && o->levels < 1)

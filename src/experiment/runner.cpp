@@ -17,6 +17,7 @@
 #include "model/distribution.hpp"
 #include "grid/hgrid.hpp"
 #include "model/model.hpp"
+#include "packing/packing_model.hpp"
 #include "packing/packing_sizes.hpp"
 #include "packing/progress.hpp"
 #include "experiment/packing_cache.hpp"
@@ -71,13 +72,17 @@ PointResult run_point(const Scene& scene, const ScenePoint& point, const RunOpti
   if (scene.record.model) {
     // The model for the same radii, packing fraction and (fitted) sizes.
     const Empirical dist(p.radii);
-    const ModelResult m = evaluate_model(dist, ModelParams{p.d, r.nu_achieved, scene.grid.K, point.search},
-                                         sizes_for_grid(r.sizes, 2 * dist.r_max()));
-    r.model_T_over_N = m.T_over_N;
-    r.model_T_cd_over_N = m.T_cd_over_N;
-    r.model_T_ca_over_N = m.T_ca_over_N;
+    const PackingModels m = model_for_packing(p, sizes_for_grid(r.sizes, 2 * dist.r_max()), point.search, scene.grid.K);
+    r.model_T_over_N = m.random.T_over_N;
+    r.model_T_cd_over_N = m.random.T_cd_over_N;
+    r.model_T_ca_over_N = m.random.T_ca_over_N;
+    const bool excluded = point.packing.placement == Placement::excluded && m.excluded;
+    r.model_excluded_T_over_N = excluded ? m.excluded->T_over_N : std::nan("");
+    r.model_excluded_T_cd_over_N = excluded ? m.excluded->T_cd_over_N : std::nan("");
+    r.model_excluded_T_ca_over_N = excluded ? m.excluded->T_ca_over_N : std::nan("");
   } else {
     r.model_T_over_N = r.model_T_cd_over_N = r.model_T_ca_over_N = std::nan("");
+    r.model_excluded_T_over_N = r.model_excluded_T_cd_over_N = r.model_excluded_T_ca_over_N = std::nan("");
   }
   return r;
 }

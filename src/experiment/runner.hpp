@@ -18,6 +18,8 @@ struct PointResult {
   Counters counts;
   double T_over_N = 0, T_cd_over_N = 0, T_ca_over_N = 0;
   double model_T_over_N = 0, model_T_cd_over_N = 0, model_T_ca_over_N = 0;
+  // The excluded-volume model (excluded placement, 3D; NaN otherwise).
+  double model_excluded_T_over_N = 0, model_excluded_T_cd_over_N = 0, model_excluded_T_ca_over_N = 0;
   double share_multi_lowest = 0;  // lowest-level cells with >= 2 particles / all its cells
   double seconds_packing = 0, seconds_sizes = 0, seconds_build = 0, seconds_query = 0;
 };

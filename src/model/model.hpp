@@ -25,6 +25,7 @@ struct ModelResult {
   std::vector<double> m;      // particles per cell, m_h (Eq. 11)
   std::vector<double> T_cd;   // narrow-phase checks of level-h particles / N
   std::vector<double> T_ca;   // cell accesses of level-h particles / N
+  std::vector<double> T_cd_pair;  // L x L, [h * L + j]: checks of level-h particles in level j / N
   int levels() const { return static_cast<int>(sizes.size()); }
 };
 

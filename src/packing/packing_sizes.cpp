@@ -4,6 +4,7 @@
 
 #include "model/cell_sizes.hpp"
 #include "model/distribution.hpp"
+#include "model/excluded.hpp"
 #include "grid/error.hpp"
 
 namespace hgrid {
@@ -12,7 +13,12 @@ std::vector<double> model_sizes(const Packing& p, const SizeRequest& r, Search s
   if (p.size() == 0) throw InputError("cells", "the packing has no particles to fit sizes to");
   const Empirical dist(p.radii);
   const ModelParams mp{p.d, p.packing_fraction(), K, search};
-  return sizes_for_grid(choose_cell_sizes(dist, mp, r.method, r.levels, r.q).sizes, 2 * dist.r_max());
+  std::vector<double> sizes = choose_cell_sizes(dist, mp, r.method, r.levels, r.q).sizes;
+  if (r.excluded_model) {
+    if (r.method != CellMethod::optimal) throw InputError("excluded-sizes", "applies to --cells optimal only");
+    sizes = refine_sizes_excluded(dist, mp, sizes).sizes;
+  }
+  return sizes_for_grid(sizes, 2 * dist.r_max());
 }
 
 }  // namespace hgrid

@@ -14,6 +14,8 @@ struct SizeRequest {
   CellMethod method = CellMethod::optimal;
   std::optional<int> levels;
   double q = 1.0;
+  /// optimal only: refine the sizes under the excluded-volume model (3D).
+  bool excluded_model = false;
 };
 
 /// Sizes from the cost model for the packing's radii (an empirical

@@ -59,6 +59,9 @@ nlohmann::json result_to_json(const PointResult& r) {
           {"model_T_over_N", num(r.model_T_over_N)},
           {"model_T_cd_over_N", num(r.model_T_cd_over_N)},
           {"model_T_ca_over_N", num(r.model_T_ca_over_N)},
+          {"model_excluded_T_over_N", num(r.model_excluded_T_over_N)},
+          {"model_excluded_T_cd_over_N", num(r.model_excluded_T_cd_over_N)},
+          {"model_excluded_T_ca_over_N", num(r.model_excluded_T_ca_over_N)},
           {"share_multi_lowest", num(r.share_multi_lowest)},
           {"seconds_packing", r.seconds_packing},
           {"seconds_sizes", r.seconds_sizes},
@@ -143,6 +146,11 @@ PointResult result_from_json(const nlohmann::json& j) {
   r.model_T_over_N = optional_of(j, "model_T_over_N");
   r.model_T_cd_over_N = optional_of(j, "model_T_cd_over_N");
   r.model_T_ca_over_N = optional_of(j, "model_T_ca_over_N");
+  // Absent in journals written before the excluded-volume model: not recorded.
+  for (auto [key, dst] : {std::pair{"model_excluded_T_over_N", &r.model_excluded_T_over_N},
+                          std::pair{"model_excluded_T_cd_over_N", &r.model_excluded_T_cd_over_N},
+                          std::pair{"model_excluded_T_ca_over_N", &r.model_excluded_T_ca_over_N}})
+    *dst = j.is_object() && j.contains(key) ? optional_of(j, key) : std::nan("");
   r.share_multi_lowest = optional_of(j, "share_multi_lowest");
   r.seconds_packing = finite_of(j, "seconds_packing");
   r.seconds_sizes = finite_of(j, "seconds_sizes");
@@ -176,6 +184,8 @@ namespace {
 const char* const kNumericColumns[] = {"d", "n", "nu", "nu_achieved", "alpha", "omega", "sigma", "seed", "levels",
                                        "cell_accesses", "narrow_phase_checks", "contacts", "T_over_N", "T_cd_over_N",
                                        "T_ca_over_N", "model_T_over_N", "model_T_cd_over_N", "model_T_ca_over_N",
+                                       "model_excluded_T_over_N", "model_excluded_T_cd_over_N",
+                                       "model_excluded_T_ca_over_N",
                                        "share_multi_lowest", "seconds_packing", "seconds_sizes", "seconds_build",
                                        "seconds_query"};
 const char* const kTextColumns[] = {"dist", "boundary", "placement", "search"};

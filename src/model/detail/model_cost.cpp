@@ -135,6 +135,7 @@ ModelResult CostModel::detailed(const std::vector<double>& s) const {
   r.m.resize(L);
   r.T_cd.assign(L, 0.0);
   r.T_ca.assign(L, 0.0);
+  r.T_cd_pair.assign(static_cast<std::size_t>(L) * L, 0.0);
   std::array<double, kMaxD + 1> Sm{}, S1{};  // sums of m_j s_j^-i and of s_j^-i
   for (int step = 0; step < L; ++step) {
     const int h = p_.search == Search::top_down ? step : L - 1 - step;
@@ -142,6 +143,13 @@ ModelResult CostModel::detailed(const std::vector<double>& s) const {
     r.P[h] = v.P;
     r.m[h] = v.m;
     double cd = v.P * (0.5 + nc_) * v.m, ca = v.P * (1.0 + nc_);
+    r.T_cd_pair[h * L + h] = cd;
+    for (int prev = 0; prev < step; ++prev) {  // the levels searched before: b(j,h) m_j P_h
+      const int j = p_.search == Search::top_down ? prev : L - 1 - prev;
+      double pair = 0.0, inv = 1.0;
+      for (int i = 0; i <= d; ++i, inv /= lv[j].s) pair += coef_[i] * v.M[i] * inv;
+      r.T_cd_pair[h * L + j] = pair * lv[j].m;
+    }
     for (int i = 0; i <= d; ++i) {
       cd += coef_[i] * v.M[i] * Sm[i];
       ca += coef_[i] * v.M[i] * S1[i];

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Tables of both models' errors at every excluded-volume point of Figs. 11
+# and 12: measured T/N, and measured / predicted - 1 for the paper's model
+# (random centres) and the excluded-volume model. Reads results/fig11[-S].csv
+# and fig12[-S].csv; writes paper_figs/model-errors[-S].md.
+# Usage: plots/model_errors.sh [SCALE]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scale=${1:-default}
+suffix=$([ "$scale" = default ] && echo "" || echo "-$scale")
+out="paper_figs/model-errors$suffix.md" tmp="paper_figs/.model-errors$suffix.tmp.md"
+table() {  # CSV TITLE: one row per excluded-volume point
+  awk -F, -v title="$2" '
+    /^#/ { if (!hdr) prov = $0; next }
+    !hdr { for (i = 1; i <= NF; i++) c[$i] = i; hdr = 1
+           print "### " title "\n"; print "| boundary | alpha | omega | nu | N | measured T/N | paper model | excluded-volume model |"
+           print "|---|---|---|---|---|---|---|---|"; next }
+    $c["placement"] == "excluded" {
+      m = $c["T_over_N"]; p = $c["model_T_over_N"]; e = $c["model_excluded_T_over_N"]
+      pe = 100 * (m / p - 1); ee = (e == "NaN" || e == "") ? "-" : sprintf("%+.1f %%", 100 * (m / e - 1))
+      printf "| %s | %g | %g | %g | %d | %.3f | %+.1f %% | %s |\n", $c["boundary"], $c["alpha"], $c["omega"], $c["nu"], $c["n"], m, pe, ee
+      if (ee != "-") { a = m / e - 1; if (a < 0) a = -a; if (a > worst[$c["boundary"]]) worst[$c["boundary"]] = a }
+      a = m / p - 1; if (a < 0) a = -a; if (a > pworst[$c["boundary"]]) pworst[$c["boundary"]] = a
+    }
+    END { print ""; for (b in pworst) printf "Largest |measured/predicted - 1|, %s: paper model %.1f %%, excluded-volume model %.1f %%.\n", b, 100 * pworst[b], 100 * worst[b]
+          print "\nSource: " prov "\n" }' "$1"
+}
+{
+  echo "# Model errors at every excluded-volume point ($scale scale)"
+  echo
+  echo "Entries are measured / predicted - 1 for T/N (K = 0.2), each model evaluated"
+  echo "for the packing's own radii, packing fraction and the cell sizes used."
+  echo "Rendered by plots/model_errors.sh from the result CSVs."
+  echo
+  table "results/fig11$suffix.csv" "Figure 11 (T/N against nu)"
+  table "results/fig12$suffix.csv" "Figure 12 (T/N against N)"
+} > "$tmp"
+mv -f "$tmp" "$out"
+echo "wrote $out" >&2

@@ -1,0 +1,213 @@
+// Excluded-volume cost model (docs/MODEL.md section 8).
+#include "model/excluded.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "grid/error.hpp"
+#include "grid/geometry.hpp"
+#include "model/detail/py_mixture.hpp"
+#include "model/detail/walls.hpp"
+#include "model/detail/window.hpp"
+
+namespace hgrid {
+
+namespace {
+constexpr int kPad = 4;                 // r-grid oversampling of the sine transform
+constexpr double kMinBinProbability = 1e-300;
+
+struct Bin {
+  int level;
+  double P, r_mean, sigma;  // probability, mean radius, diameter keeping the mean volume
+};
+
+struct Window {
+  int bin, level_searched;
+  double c, s, half;  // window_1d(c, s); 1/2 for the own level (pairs counted once)
+};
+
+// Walls: each window's random-centre count and cell accesses in the walled
+// box (centres uniform in their accessible region, scans clipped), and the
+// bulk excess scaled by the ratio of walled to bulk random counts.
+void apply_walls(const WallBox& box, double density, const std::vector<Bin>& bins, const std::vector<Window>& win,
+                 const std::vector<double>& excess, const std::vector<double>& sizes, ModelResult& res) {
+  const int L = static_cast<int>(sizes.size());
+  const double volume = box.extent[0] * box.extent[1] * box.extent[2];
+  std::fill(res.T_cd_pair.begin(), res.T_cd_pair.end(), 0.0);
+  std::fill(res.T_ca.begin(), res.T_ca.end(), 0.0);
+  for (std::size_t w = 0; w < win.size(); ++w) {
+    const Window& wi = win[w];
+    const Bin& a = bins[wi.bin];
+    const bool own = wi.level_searched == a.level;
+    std::vector<double> radii, prob;
+    double P_j = 0.0;
+    for (const Bin& b : bins)
+      if (b.level == wi.level_searched) radii.push_back(b.r_mean), prob.push_back(b.P), P_j += b.P;
+    std::array<detail::AxisScan, 3> ax;
+    for (int k = 0; k < 3; ++k)
+      ax[k] = detail::scan_axis(box.extent[k], a.r_mean, sizes[wi.level_searched], own,
+                                a.r_mean + 0.5 * sizes[wi.level_searched], radii);
+    double random = 0.0;  // expected level-j centres in the scan, per particle
+    for (std::size_t q = 0; q < radii.size(); ++q)
+      random += density * volume * prob[q] * ax[0].fraction[q] * ax[1].fraction[q] * ax[2].fraction[q];
+    const double bulk = density * P_j * std::pow(2.0 * wi.c + wi.s, 3);
+    const double scaled_excess = bulk > 0 ? excess[w] * random / bulk : 0.0;
+    res.T_cd_pair[a.level * L + wi.level_searched] += wi.half * a.P * (random + scaled_excess);
+    double cells;
+    if (own) {  // own cell + the existing cells of the half stencil
+      cells = 0.0;
+      for (int o0 = -1; o0 <= 1; ++o0)
+        for (int o1 = -1; o1 <= 1; ++o1)
+          for (int o2 = -1; o2 <= 1; ++o2) {
+            const int o[3] = {o0, o1, o2};
+            const int first = o0 != 0 ? o0 : (o1 != 0 ? o1 : o2);
+            if (first < 0) continue;
+            double pr = 1.0;
+            for (int k = 0; k < 3; ++k) pr *= o[k] < 0 ? ax[k].p_below : (o[k] > 0 ? ax[k].p_above : 1.0);
+            cells += pr;
+          }
+    } else {
+      cells = ax[0].cells * ax[1].cells * ax[2].cells;
+    }
+    res.T_ca[a.level] += a.P * cells;
+  }
+  res.T_ca_over_N = 0.0;
+  for (double t : res.T_ca) res.T_ca_over_N += t;
+}
+
+std::size_t next_pow2(double x) {
+  std::size_t n = 2;
+  while (static_cast<double>(n) < x) n *= 2;
+  return n;
+}
+}  // namespace
+
+ModelResult evaluate_excluded_model(const Distribution& dist, const ModelParams& p,
+                                    const std::vector<double>& sizes, const ExcludedOptions& opt,
+                                    const std::optional<WallBox>& walls) {
+  ModelResult res = evaluate_model(dist, p, sizes);  // validates; the random-centre counts
+  if (p.d != 3)
+    throw InputError("d", "the excluded-volume model is 3D only (no closed-form Percus-Yevick structure for discs)");
+  if (!(p.nu < 1.0)) throw InputError("nu", "must be < 1 for the excluded-volume model (got " + format_number(p.nu) + ")");
+  if (opt.bins_per_level < 1 || !(opt.k_max > 0) || !(opt.dk > 0))
+    throw InputError("excluded", "bins_per_level >= 1, k_max > 0 and dk > 0 required");
+  const int L = static_cast<int>(sizes.size());
+  const double vp = unit_ball_volume(3) * dist.moment(3, 0.0, dist.r_max());
+  const double c = p.nu / vp;  // number density
+
+  // Size classes: bins_per_level geometric slices of each level's radii.
+  std::vector<Bin> bins;
+  double lo = dist.r_min();
+  for (int h = 0; h < L; ++h) {
+    const double hi = std::min(0.5 * sizes[h], dist.r_max());
+    if (hi > lo) {
+      for (int q = 0; q < opt.bins_per_level; ++q) {
+        const double a = lo * std::pow(hi / lo, double(q) / opt.bins_per_level);
+        const double b = q + 1 == opt.bins_per_level ? hi : lo * std::pow(hi / lo, double(q + 1) / opt.bins_per_level);
+        const double P = dist.moment(0, a, b);
+        if (!(P > kMinBinProbability)) continue;
+        bins.push_back({h, P, dist.moment(1, a, b) / P, 2.0 * std::cbrt(dist.moment(3, a, b) / P)});
+      }
+      lo = hi;
+    }
+  }
+  const int B = static_cast<int>(bins.size());
+  std::vector<double> rho(B), sigma(B);
+  for (int b = 0; b < B; ++b) rho[b] = c * bins[b].P, sigma[b] = bins[b].sigma;
+  const detail::PyMixture py(rho, sigma);
+
+  // Windows: every bin's own level and the levels it searches.
+  std::vector<Window> win;
+  double reach = 0.0;
+  for (int a = 0; a < B; ++a) {
+    const int h = bins[a].level;
+    win.push_back({a, h, sizes[h], sizes[h], 0.5});
+    for (int j = 0; j < L; ++j) {
+      const bool searched = p.search == Search::top_down ? j < h : j > h;
+      if (searched) win.push_back({a, j, bins[a].r_mean + 0.5 * sizes[j], sizes[j], 1.0});
+    }
+  }
+  for (const Window& w : win) reach = std::max(reach, std::sqrt(3.0) * (w.c + w.s));
+
+  // Wave numbers k_m = m dk, m = 1..N-1, up to k_max.
+  const double sigma_min = *std::min_element(sigma.begin(), sigma.end());
+  const double kmax = opt.k_max / sigma_min;
+  const std::size_t N = next_pow2(kmax / (opt.dk * std::numbers::pi / reach) + 1.0);
+  if (N > static_cast<std::size_t>(kMaxWaveNumbers))
+    throw InputError("omega", "size ratio too large for the excluded-volume model (needs " + std::to_string(N) +
+                                  " wave numbers, at most " + std::to_string(kMaxWaveNumbers) +
+                                  "; omega up to ~3000 is supported)");
+  const double dk = kmax / static_cast<double>(N);
+
+  // Y_{a,j}(k) = sum_{b in level j} rho_b hhat_ab(k), stored as k Y for the sine transform.
+  std::vector<std::vector<double>> v(L, std::vector<double>(B, 0.0)), y;
+  for (int b = 0; b < B; ++b) v[bins[b].level][b] = std::sqrt(rho[b]);
+  std::vector<std::vector<double>> F(win.size(), std::vector<double>(N * kPad, 0.0));
+  for (std::size_t m = 1; m < N; ++m) {
+    const double k = m * dk;
+    py.apply_h(k, v, y);
+    for (std::size_t w = 0; w < win.size(); ++w) {
+      const int a = win[w].bin;
+      F[w][m] = k * y[win[w].level_searched][a] / std::sqrt(rho[a]);
+    }
+  }
+  // h_{a,j}(r_n) = dk / (2 pi^2 r_n) sum_m k_m Y(k_m) sin(k_m r_n); excess = int h A_W dr.
+  const std::size_t Nf = N * kPad;
+  const double dr = std::numbers::pi / (static_cast<double>(Nf) * dk);
+  std::vector<double> excess(win.size(), 0.0);  // per particle of the window's bin
+  for (std::size_t w = 0; w < win.size(); ++w) {
+    const Window& wi = win[w];
+    detail::sine_transform(F[w]);
+    const int nmax = static_cast<int>(std::min<double>(Nf - 1, std::ceil(std::sqrt(3.0) * (wi.c + wi.s) / dr)));
+    const std::vector<double> A = detail::window_shell_areas(wi.c, wi.s, dr, nmax);
+    double x = 0.0;
+    for (int n = 1; n <= nmax; ++n) x += F[w][n] / (n * dr) * A[n];
+    excess[w] = x * dk / (2.0 * std::numbers::pi * std::numbers::pi) * dr;
+  }
+  if (!walls) {
+    for (std::size_t w = 0; w < win.size(); ++w)
+      res.T_cd_pair[bins[win[w].bin].level * L + win[w].level_searched] += win[w].half * bins[win[w].bin].P * excess[w];
+  } else {
+    apply_walls(*walls, c, bins, win, excess, sizes, res);
+  }
+  res.T_cd_over_N = 0.0;
+  for (int h = 0; h < L; ++h) {
+    res.T_cd[h] = 0.0;
+    for (int j = 0; j < L; ++j) res.T_cd[h] += res.T_cd_pair[h * L + j];
+    res.T_cd_over_N += res.T_cd[h];
+  }
+  res.T_over_N = res.T_cd_over_N + p.K * res.T_ca_over_N;
+  return res;
+}
+
+ExcludedSizes refine_sizes_excluded(const Distribution& dist, const ModelParams& p, std::vector<double> sizes,
+                                    const ExcludedOptions& opt) {
+  ExcludedSizes out;
+  out.model = evaluate_excluded_model(dist, p, sizes, opt);
+  out.evaluations = 1;
+  const int L = static_cast<int>(sizes.size());
+  for (double step : {1.25, 1.1}) {
+    for (bool improved = true; improved;) {
+      improved = false;
+      for (int h = 0; h + 1 < L; ++h)
+        for (double f : {1.0 / step, step}) {
+          std::vector<double> trial = sizes;
+          trial[h] *= f;
+          if ((h > 0 && !(trial[h] > trial[h - 1])) || !(trial[h] < trial[h + 1])) continue;
+          const ModelResult m = evaluate_excluded_model(dist, p, trial, opt);
+          ++out.evaluations;
+          if (m.T_over_N < out.model.T_over_N) {
+            sizes = trial;
+            out.model = m;
+            improved = true;
+          }
+        }
+    }
+  }
+  out.sizes = sizes;
+  return out;
+}
+
+}  // namespace hgrid

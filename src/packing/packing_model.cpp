@@ -1,0 +1,31 @@
+#include "packing/packing_model.hpp"
+
+#include "grid/error.hpp"
+#include "model/distribution.hpp"
+#include "model/excluded.hpp"
+
+namespace hgrid {
+
+PackingModels model_for_packing(const Packing& p, const std::vector<double>& sizes, Search search, double K) {
+  if (p.size() == 0) throw InputError("packing", "no particles to model");
+  const Empirical dist(p.radii);
+  const ModelParams mp{p.d, p.packing_fraction(), K, search};
+  PackingModels out;
+  out.random = evaluate_model(dist, mp, sizes);
+  if (p.d != 3) {
+    out.excluded_skipped = "the excluded-volume model is 3D only";
+  } else if (!(mp.nu < 1.0)) {
+    out.excluded_skipped = "packing fraction >= 1";
+  } else {
+    try {
+      std::optional<WallBox> walls;
+      if (p.boundary == Boundary::walls) walls = WallBox{{p.box[0], p.box[1], p.box[2]}};
+      out.excluded = evaluate_excluded_model(dist, mp, sizes, {}, walls);
+    } catch (const InputError& e) {
+      out.excluded_skipped = e.what();
+    }
+  }
+  return out;
+}
+
+}  // namespace hgrid

@@ -1,0 +1,23 @@
+// The cost models evaluated for one packing: its own radii, packing
+// fraction, boundary and the cell sizes a grid actually used.
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "model/model.hpp"
+#include "packing/packing.hpp"
+
+namespace hgrid {
+
+struct PackingModels {
+  ModelResult random;                   // the paper's model (random centres)
+  std::optional<ModelResult> excluded;  // the excluded-volume model, where it applies
+  std::string excluded_skipped;         // otherwise: why not
+};
+
+/// Both models for the packing's radii (an empirical distribution) and
+/// packing fraction, for the sizes used (e.g. HGrid::sizes()).
+PackingModels model_for_packing(const Packing& p, const std::vector<double>& sizes, Search search, double K);
+
+}  // namespace hgrid

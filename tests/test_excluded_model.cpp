@@ -1,0 +1,163 @@
+// The excluded-volume cost model: its Percus-Yevick core against closed
+// forms, its limits, its discretisation, and values computed independently.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "grid/error.hpp"
+#include "model/detail/py_mixture.hpp"
+#include "model/detail/walls.hpp"
+#include "model/detail/window.hpp"
+#include "model/distribution.hpp"
+#include "model/excluded.hpp"
+
+namespace hgrid {
+namespace {
+
+constexpr double kPyRelTol = 1e-9;           // closed forms vs the Q-matrix route at k -> 0
+constexpr double kLowDensityRelTol = 1e-9;   // issue target: nu -> 0 equals the paper model
+constexpr double kDiscretisationRelTol = 1e-3;
+constexpr double kIndependentAbsTol = 2e-3;  // vs the numpy/LAPACK evaluation, per particle
+constexpr double kWallBulkRelTol = 2e-3;     // a huge walled box approaches the bulk
+
+double excess(const Distribution& d, double nu, const std::vector<double>& s, const ExcludedOptions& o = {}) {
+  const ModelParams p{3, nu, 0.2, Search::top_down};
+  return evaluate_excluded_model(d, p, s, o).T_cd_over_N - evaluate_model(d, p, s).T_cd_over_N;
+}
+
+TEST(PyMixture, MonodisperseStructureFactorAtZeroK) {
+  // S(0) = (1 - eta)^4 / (1 + 2 eta)^2 (Percus-Yevick compressibility).
+  for (double eta : {0.1, 0.3, 0.5, 0.6}) {
+    const double rho = eta * 6.0 / std::numbers::pi;
+    const detail::PyMixture py({rho}, {1.0});
+    std::vector<std::vector<double>> y;
+    py.apply_h(1e-5, {{1.0}}, y);
+    const double S0 = 1.0 + y[0][0];
+    EXPECT_NEAR(S0, std::pow(1 - eta, 4) / std::pow(1 + 2 * eta, 2), kPyRelTol) << "eta " << eta;
+  }
+}
+
+TEST(PyMixture, BinaryCompressibilityMatchesScaledParticlePressure) {
+  // d(beta P)/d rho_j = sum_i sqrt(rho_i / rho_j) (I + H)^{-1}_ij, with beta P
+  // the Percus-Yevick compressibility (scaled-particle) pressure of the mixture.
+  const std::vector<double> rho = {0.3, 0.02}, sig = {1.0, 3.0};
+  const auto betaP = [&](std::vector<double> r) {
+    double xi[4] = {0, 0, 0, 0};
+    for (int n = 0; n < 4; ++n)
+      for (int i = 0; i < 2; ++i) xi[n] += std::numbers::pi / 6 * r[i] * std::pow(sig[i], n);
+    const double e = 1 - xi[3];
+    return 6 / std::numbers::pi * (xi[0] / e + 3 * xi[1] * xi[2] / (e * e) + 3 * std::pow(xi[2], 3) / std::pow(e, 3));
+  };
+  const detail::PyMixture py(rho, sig);
+  std::vector<std::vector<double>> y;
+  py.apply_h(1e-5, {{1.0, 0.0}, {0.0, 1.0}}, y);
+  // (I + H) as a 2x2 matrix; invert it.
+  const double a = 1 + y[0][0], b = y[1][0], c = y[0][1], d = 1 + y[1][1], det = a * d - b * c;
+  const double inv[2][2] = {{d / det, -b / det}, {-c / det, a / det}};
+  for (int j = 0; j < 2; ++j) {
+    double lhs = 0;
+    for (int i = 0; i < 2; ++i) lhs += std::sqrt(rho[i] / rho[j]) * inv[i][j];
+    std::vector<double> r2 = rho;
+    const double eps = 1e-7 * rho[j];
+    r2[j] += eps;
+    std::vector<double> r1 = rho;
+    r1[j] -= eps;
+    EXPECT_NEAR(lhs, (betaP(r2) - betaP(r1)) / (2 * eps), 1e-5 * lhs) << "component " << j;
+  }
+}
+
+TEST(ExcludedWindow, ShellAreasIntegrateToTheWindowVolume) {
+  const double c = 7.5, s = 6.0, dr = 0.01;
+  const int nmax = static_cast<int>(std::sqrt(3.0) * (c + s) / dr) + 2;
+  const auto A = detail::window_shell_areas(c, s, dr, nmax);
+  double v = 0;
+  for (int n = 1; n <= nmax; ++n) v += A[n] * dr;
+  EXPECT_NEAR(v, std::pow(2 * c + s, 3), 1e-3 * std::pow(2 * c + s, 3));
+}
+
+TEST(ExcludedWindow, SineTransformMatchesTheDirectSum) {
+  std::vector<double> x(64);
+  for (std::size_t m = 0; m < x.size(); ++m) x[m] = std::cos(0.3 * m) + 0.01 * m;
+  std::vector<double> y = x;
+  detail::sine_transform(y);
+  for (std::size_t n = 1; n < x.size(); ++n) {
+    double s = 0;
+    for (std::size_t m = 1; m < x.size(); ++m) s += x[m] * std::sin(std::numbers::pi * m * n / x.size());
+    EXPECT_NEAR(y[n], s, 1e-10 * x.size());
+  }
+}
+
+TEST(ExcludedModel, LowDensityEqualsThePaperModel) {
+  const PowerLaw d(-3, 10);
+  const std::vector<double> s = {4.0, 8.0, 20.0};
+  const ModelParams p{3, 1e-10, 0.2, Search::top_down};
+  const double paper = evaluate_model(d, p, s).T_over_N, ex = evaluate_excluded_model(d, p, s).T_over_N;
+  EXPECT_NEAR(ex / paper, 1.0, kLowDensityRelTol);
+}
+
+TEST(ExcludedModel, ConvergedInItsDiscretisation) {
+  const PowerLaw d(-3, 10);
+  const std::vector<double> s = {4.0, 8.0, 20.0};
+  const ModelParams p{3, 0.5, 0.2, Search::top_down};
+  const double ref = evaluate_excluded_model(d, p, s).T_over_N;
+  for (const ExcludedOptions o : {ExcludedOptions{12, 15, 0.5}, ExcludedOptions{6, 30, 0.5}, ExcludedOptions{6, 15, 0.25}})
+    EXPECT_NEAR(evaluate_excluded_model(d, p, s, o).T_over_N / ref, 1.0, kDiscretisationRelTol)
+        << o.bins_per_level << " " << o.k_max << " " << o.dk;
+}
+
+TEST(ExcludedModel, MatchesAnIndependentEvaluation) {
+  // Excess of T_cd/N over the paper model from a separate numpy/LAPACK
+  // implementation (k-space window transforms, LAPACK inverse of Q^T Q).
+  struct Case { double alpha, omega, nu; std::vector<double> sizes; double excess; };
+  const std::vector<Case> cases = {{-3, 10, 0.4, {4, 8, 20}, 0.618382},
+                                   {-3, 100, 0.6, {6, 14, 30, 70, 200}, 2.551228},
+                                   {0, 10, 0.5, {5, 12, 20}, -0.184327}};
+  for (const Case& c : cases)
+    EXPECT_NEAR(excess(PowerLaw(c.alpha, c.omega), c.nu, c.sizes), c.excess, kIndependentAbsTol)
+        << "alpha " << c.alpha << " omega " << c.omega << " nu " << c.nu;
+}
+
+TEST(ExcludedModel, DenseEdgesStayFinite) {
+  // alpha = -1 and -d-1 (special cases of the power law), omega -> 1, nu near
+  // random close packing: finite, and the cross-level excess of a big
+  // particle's box is negative (its own body holds no smaller centres).
+  for (double alpha : {-1.0, -4.0, 0.0, 2.0}) {
+    const PowerLaw d(alpha, 10);
+    const double e = excess(d, 0.7, {5.0, 10.0, 20.0});
+    EXPECT_TRUE(std::isfinite(e)) << alpha;
+  }
+  const PowerLaw mono(-3, 1.0001);
+  EXPECT_TRUE(std::isfinite(excess(mono, 0.6, {2.0002})));
+}
+
+TEST(ExcludedModel, RefusesWhatItCannotModel) {
+  const PowerLaw d(-3, 10);
+  EXPECT_THROW(evaluate_excluded_model(d, ModelParams{2, 0.5, 0.2, Search::top_down}, {20.0}), InputError);
+  EXPECT_THROW(evaluate_excluded_model(d, ModelParams{3, 1.0, 0.2, Search::top_down}, {20.0}), InputError);
+  const PowerLaw wide(-3, 1e6);
+  try {
+    evaluate_excluded_model(wide, ModelParams{3, 0.5, 0.2, Search::top_down}, {2e6});
+    ADD_FAILURE() << "omega = 1e6 accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "omega");
+  }
+}
+
+TEST(ExcludedModel, AHugeWalledBoxIsTheBulk) {
+  const PowerLaw d(-3, 10);
+  const std::vector<double> s = {4.0, 8.0, 20.0};
+  const ModelParams p{3, 0.4, 0.2, Search::top_down};
+  const ModelResult bulk = evaluate_excluded_model(d, p, s);
+  const ModelResult walled = evaluate_excluded_model(d, p, s, {}, WallBox{{1e5, 1e5, 1e5}});
+  EXPECT_NEAR(walled.T_cd_over_N / bulk.T_cd_over_N, 1.0, kWallBulkRelTol);
+  EXPECT_NEAR(walled.T_ca_over_N / bulk.T_ca_over_N, 1.0, kWallBulkRelTol);
+  // A small walled box has fewer neighbours and fewer cells to scan.
+  const ModelResult small = evaluate_excluded_model(d, p, s, {}, WallBox{{60, 60, 60}});
+  EXPECT_LT(small.T_cd_over_N, bulk.T_cd_over_N);
+  EXPECT_LT(small.T_ca_over_N, bulk.T_ca_over_N);
+}
+
+}  // namespace
+}  // namespace hgrid
