@@ -127,8 +127,8 @@ TEST(Regression, RandomPeriodicMatchesModel) {
 // The excluded-volume model on the seeded periodic excluded-volume points
 // (omega = 10, nu = 0.6, N = 3000): its largest known error is there
 // (docs/MODEL.md section 8: -3.7 % to -3.9 % at alpha = -3), so the bound is
-// that plus N = 3000's sampling noise; the walled points are not modelled to
-// this accuracy and are only required to be recorded.
+// that plus N = 3000's sampling noise. The walled points (alpha = -3 there is
+// 8 % off) are only required to be recorded.
 TEST(Regression, ExcludedVolumeModelRecorded) {
   constexpr double kExcludedModelRelTol = 0.05;
   int periodic = 0;

@@ -31,7 +31,8 @@ struct Window {
 // Walls: each window's random-centre count and cell accesses in the walled
 // box (centres uniform in their accessible region, scans clipped), and the
 // bulk excess scaled by the ratio of walled to bulk random counts.
-void apply_walls(const WallBox& box, double density, const std::vector<Bin>& bins, const std::vector<Window>& win,
+void apply_walls(const WallBox& box, double density, const std::vector<Bin>& bins,
+                 const std::vector<detail::WallProfile>& prof, const std::vector<Window>& win,
                  const std::vector<double>& excess, const std::vector<double>& sizes, ModelResult& res) {
   const int L = static_cast<int>(sizes.size());
   const double volume = box.extent[0] * box.extent[1] * box.extent[2];
@@ -41,16 +42,17 @@ void apply_walls(const WallBox& box, double density, const std::vector<Bin>& bin
     const Window& wi = win[w];
     const Bin& a = bins[wi.bin];
     const bool own = wi.level_searched == a.level;
-    std::vector<double> radii, prob;
+    std::vector<detail::WallProfile> searched;
+    std::vector<double> prob;
     double P_j = 0.0;
-    for (const Bin& b : bins)
-      if (b.level == wi.level_searched) radii.push_back(b.r_mean), prob.push_back(b.P), P_j += b.P;
+    for (std::size_t q = 0; q < bins.size(); ++q)
+      if (bins[q].level == wi.level_searched) searched.push_back(prof[q]), prob.push_back(bins[q].P), P_j += bins[q].P;
     std::array<detail::AxisScan, 3> ax;
     for (int k = 0; k < 3; ++k)
-      ax[k] = detail::scan_axis(box.extent[k], a.r_mean, sizes[wi.level_searched], own,
-                                a.r_mean + 0.5 * sizes[wi.level_searched], radii);
+      ax[k] = detail::scan_axis(box.extent[k], prof[wi.bin], sizes[wi.level_searched], own,
+                                a.r_mean + 0.5 * sizes[wi.level_searched], searched);
     double random = 0.0;  // expected level-j centres in the scan, per particle
-    for (std::size_t q = 0; q < radii.size(); ++q)
+    for (std::size_t q = 0; q < searched.size(); ++q)
       random += density * volume * prob[q] * ax[0].fraction[q] * ax[1].fraction[q] * ax[2].fraction[q];
     const double bulk = density * P_j * std::pow(2.0 * wi.c + wi.s, 3);
     const double scaled_excess = bulk > 0 ? excess[w] * random / bulk : 0.0;
@@ -81,6 +83,58 @@ std::size_t next_pow2(double x) {
   std::size_t n = 2;
   while (static_cast<double>(n) < x) n *= 2;
   return n;
+}
+
+// Wall density profiles: the wall is a sphere kWallDiameter times the largest
+// diameter, at a density too low to matter, in the same Percus-Yevick mixture
+// (the wall limit of the mixture's big-particle structure). h_Wb(z) is
+// tabulated for z = 0 .. kWallReach largest diameters from the wall.
+constexpr double kWallDiameter = 20.0;
+constexpr double kWallReach = 4.0;
+constexpr double kWallPacking = 1e-12;  // (pi/6) rho_W sigma_W^3
+constexpr double kWallDk = 0.25;        // wave-number step, in units of pi / reach
+
+std::vector<detail::WallProfile> wall_profiles(const std::vector<double>& rho, const std::vector<double>& sigma,
+                                               const std::vector<Bin>& bins, const ExcludedOptions& opt) {
+  const int B = static_cast<int>(rho.size());
+  const double smax = *std::max_element(sigma.begin(), sigma.end());
+  const double smin = *std::min_element(sigma.begin(), sigma.end());
+  const double sw = kWallDiameter * smax, rw = kWallPacking * 6.0 / (std::numbers::pi * sw * sw * sw);
+  std::vector<double> rho2 = rho, sig2 = sigma;
+  rho2.push_back(rw);
+  sig2.push_back(sw);
+  const detail::PyMixture py(rho2, sig2);
+  const double reach = 0.5 * sw + kWallReach * smax, kmax = opt.k_max / smin;
+  const std::size_t N = next_pow2(kmax / (kWallDk * std::numbers::pi / reach) + 1.0);
+  if (N > static_cast<std::size_t>(kMaxWaveNumbers) * 4)
+    throw InputError("omega", "size ratio too large for the excluded-volume model with walls");
+  const double dk = kmax / static_cast<double>(N);
+  std::vector<std::vector<double>> F(B, std::vector<double>(N * kPad, 0.0)), y;
+  std::vector<std::vector<double>> e(1, std::vector<double>(B + 1, 0.0));
+  e[0][B] = 1.0;
+  for (std::size_t m = 1; m < N; ++m) {
+    const double k = m * dk;
+    py.apply_h(k, e, y);
+    for (int b = 0; b < B; ++b) F[b][m] = k * y[0][b] / std::sqrt(rho[b] * rw);
+  }
+  const std::size_t Nf = N * kPad;
+  const double dr = std::numbers::pi / (static_cast<double>(Nf) * dk);
+  std::vector<detail::WallProfile> prof(B);
+  for (int b = 0; b < B; ++b) {
+    detail::sine_transform(F[b]);
+    prof[b].radius = bins[b].r_mean;
+    prof[b].dz = dr;
+    const auto nz = static_cast<std::size_t>(kWallReach * smax / dr);
+    prof[b].h.resize(nz);
+    for (std::size_t i = 0; i < nz; ++i) {
+      const double r = 0.5 * sw + i * dr, t = r / dr;
+      const auto n = static_cast<std::size_t>(t);
+      if (n + 1 >= Nf) break;
+      const double hn = F[b][n] / (n * dr), hn1 = F[b][n + 1] / ((n + 1) * dr);
+      prof[b].h[i] = (hn + (t - n) * (hn1 - hn)) * dk / (2.0 * std::numbers::pi * std::numbers::pi);
+    }
+  }
+  return prof;
 }
 }  // namespace
 
@@ -170,7 +224,7 @@ ModelResult evaluate_excluded_model(const Distribution& dist, const ModelParams&
     for (std::size_t w = 0; w < win.size(); ++w)
       res.T_cd_pair[bins[win[w].bin].level * L + win[w].level_searched] += win[w].half * bins[win[w].bin].P * excess[w];
   } else {
-    apply_walls(*walls, c, bins, win, excess, sizes, res);
+    apply_walls(*walls, c, bins, wall_profiles(rho, sigma, bins, opt), win, excess, sizes, res);
   }
   res.T_cd_over_N = 0.0;
   for (int h = 0; h < L; ++h) {

@@ -5,16 +5,25 @@
 
 namespace hgrid::detail {
 
+/// The density of one size class across an axis [0, A] with walls at both
+/// ends: zero within `radius` of a wall, else 1 + h(z) + h(A - z) (h(z): the
+/// class's wall correlation at distance z from a wall, tabulated every dz from
+/// z = 0; 0 beyond the table; an empty table is a uniform density).
+struct WallProfile {
+  double radius = 0;
+  double dz = 1;
+  std::vector<double> h;
+};
+
 struct AxisScan {
   double cells = 0;                // expected number of cells scanned
   double p_below = 0, p_above = 0; // own-level: probability the cell below / above exists
-  std::vector<double> fraction;    // per searched radius b: expected share of [b, A - b] inside the scan
+  std::vector<double> fraction;    // per searched class: expected share of its particles inside the scan
 };
 
-/// A particle of radius a, its centre uniform in [a, A - a], on a level of
-/// cells of side s (n = ceil(A / s), cell 0 at the wall). own: the cells
-/// i-1..i+1 around its cell i; otherwise every cell from (x - beta) to (x + beta).
-/// Scans are clipped to [0, n-1].
-AxisScan scan_axis(double A, double a, double s, bool own, double beta, const std::vector<double>& b);
+/// A particle of the class `a` on a level of cells of side s (n = ceil(A / s),
+/// cell 0 at the wall). own: the cells i-1..i+1 around its cell i; otherwise
+/// every cell from (x - beta) to (x + beta). Scans are clipped to [0, n-1].
+AxisScan scan_axis(double A, const WallProfile& a, double s, bool own, double beta, const std::vector<WallProfile>& b);
 
 }  // namespace hgrid::detail
