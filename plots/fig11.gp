@@ -2,12 +2,12 @@
 # excluded-volume model (dashed) against nu; alpha = -3.
 # gnuplot -e "in='results/fig11.csv'; out='paper_figs/fig11-measured-vs-model-nu.png'; fmt='png'" plots/fig11.gp
 if (!exists("fmt")) fmt = 'png'
-if (fmt eq 'pdf') { set terminal pdfcairo enhanced size 6in,4.2in font 'Helvetica,11' } \
-else { set terminal pngcairo enhanced size 900,630 font 'Helvetica,12' }
+if (fmt eq 'pdf') { set terminal pdfcairo enhanced size 7.7in,4.2in font 'Helvetica,11' } \
+else { set terminal pngcairo enhanced size 1150,630 font 'Helvetica,12' }
 set output out
 set datafile separator ','
 set datafile columnheaders
-set key top left box opaque
+set key outside right top box
 set xlabel 'packing fraction {/Symbol n}'
 set ylabel 'T / N  (K = 0.2)'
 set xrange [0:0.65]

@@ -1,12 +1,12 @@
 # Figure 12: T/N measured vs model against N; nu = 0.6, omega = 10.
 # Open symbols: walls; filled: periodic; lines: model.
 if (!exists("fmt")) fmt = 'png'
-if (fmt eq 'pdf') { set terminal pdfcairo enhanced size 6in,4.2in font 'Helvetica,11' } \
-else { set terminal pngcairo enhanced size 900,630 font 'Helvetica,12' }
+if (fmt eq 'pdf') { set terminal pdfcairo enhanced size 8in,4.6in font 'Helvetica,11' } \
+else { set terminal pngcairo enhanced size 1250,700 font 'Helvetica,12' }
 set output out
 set datafile separator ','
 set datafile columnheaders
-set key outside right top box
+set key outside right top box font ',10'
 set logscale x
 set format x '10^{%T}'
 set xlabel 'N'
@@ -21,7 +21,7 @@ plot for [i=1:words(alphas)] in using (sel("periodic", real(word(alphas,i)), col
      for [i=1:words(alphas)] in using (sel("periodic", real(word(alphas,i)), column("n"))):"model_excluded_T_over_N" \
        with lines lw 2 dt 2 lc i title sprintf('excluded-volume model, periodic, {/Symbol a} = %s', word(alphas,i)), \
      for [i=1:words(alphas)] in using (sel("walls", real(word(alphas,i)), column("n"))):"model_excluded_T_over_N" \
-       with lines lw 1 dt 3 lc i title sprintf('excluded-volume model, walls, {/Symbol a} = %s', word(alphas,i)), \
+       with lines lw 2 dt 3 lc i title sprintf('excluded-volume model, walls, {/Symbol a} = %s', word(alphas,i)), \
      for [i=1:words(alphas)] in using (sel("walls", real(word(alphas,i)), column("n"))):"T_over_N" \
        with points pt 6 ps 1.4 lc i title sprintf('walls, {/Symbol a} = %s', word(alphas,i)), \
      for [i=1:words(alphas)] in using (sel("periodic", real(word(alphas,i)), column("n"))):"T_over_N" \
