@@ -16,13 +16,14 @@ table() {  # CSV TITLE: one row per excluded-volume point
            print "### " title "\n"; print "| boundary | alpha | omega | nu | N | measured T/N | paper model | excluded-volume model |"
            print "|---|---|---|---|---|---|---|---|"; next }
     $c["placement"] == "excluded" {
-      m = $c["T_over_N"]; p = $c["model_T_over_N"]; e = $c["model_excluded_T_over_N"]
+      m = $c["T_over_N"]; p = $c["model_T_over_N"]; e = ("model_excluded_T_over_N" in c) ? $c["model_excluded_T_over_N"] : "NaN"
       pe = 100 * (m / p - 1); ee = (e == "NaN" || e == "") ? "-" : sprintf("%+.1f %%", 100 * (m / e - 1))
       printf "| %s | %g | %g | %g | %d | %.3f | %+.1f %% | %s |\n", $c["boundary"], $c["alpha"], $c["omega"], $c["nu"], $c["n"], m, pe, ee
       if (ee != "-") { a = m / e - 1; if (a < 0) a = -a; if (a > worst[$c["boundary"]]) worst[$c["boundary"]] = a }
       a = m / p - 1; if (a < 0) a = -a; if (a > pworst[$c["boundary"]]) pworst[$c["boundary"]] = a
     }
-    END { print ""; for (b in pworst) printf "Largest |measured/predicted - 1|, %s: paper model %.1f %%, excluded-volume model %.1f %%.\n", b, 100 * pworst[b], 100 * worst[b]
+    END { print ""; if (!("model_excluded_T_over_N" in c)) print "(These results predate the excluded-volume model: rerun the scene to fill its column.)\n"
+          for (b in pworst) printf "Largest |measured/predicted - 1|, %s: paper model %.1f %%%s.\n", b, 100 * pworst[b], (b in worst) ? sprintf(", excluded-volume model %.1f %%", 100 * worst[b]) : ""
           print "\nSource: " prov "\n" }' "$1"
 }
 {
