@@ -3,12 +3,12 @@
 # (measured, the paper's model, the excluded-volume model) for alpha = -3,
 # omega = 100, nu = 0.6, optimal Top-Down sizes. Writes
 # results/excess-by-level[-SCALE].csv and paper_figs/excess-by-level[-SCALE].png|pdf.
-# Usage: plots/excess_by_level.sh [SCALE]   (default: N = 10^5; paper: 10^6; smoke: 2*10^4)
+# Usage: plots/excess_by_level.sh [SCALE]   (default: N = 10^5; paper: 10^6; smoke: 3*10^4, the smallest box that holds 4 r_max)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scale=${1:-default}
 hgrid=${HGRID:-build/hgrid}
-case "$scale" in smoke) n=20000 ;; paper) n=1000000 ;; *) n=100000 ;; esac
+case "$scale" in smoke) n=30000 ;; paper) n=1000000 ;; *) n=100000 ;; esac
 suffix=$([ "$scale" = default ] && echo "" || echo "-$scale")
 csv="results/excess-by-level$suffix.csv"
 mkdir -p results paper_figs results/packings

@@ -72,11 +72,13 @@ PointResult run_point(const Scene& scene, const ScenePoint& point, const RunOpti
   if (scene.record.model) {
     // The model for the same radii, packing fraction and (fitted) sizes.
     const Empirical dist(p.radii);
-    const PackingModels m = model_for_packing(p, sizes_for_grid(r.sizes, 2 * dist.r_max()), point.search, scene.grid.K);
+    const bool hard_spheres = point.packing.placement == Placement::excluded;
+    const PackingModels m =
+        model_for_packing(p, sizes_for_grid(r.sizes, 2 * dist.r_max()), point.search, scene.grid.K, hard_spheres);
     r.model_T_over_N = m.random.T_over_N;
     r.model_T_cd_over_N = m.random.T_cd_over_N;
     r.model_T_ca_over_N = m.random.T_ca_over_N;
-    const bool excluded = point.packing.placement == Placement::excluded && m.excluded;
+    const bool excluded = hard_spheres && m.excluded;
     r.model_excluded_T_over_N = excluded ? m.excluded->T_over_N : std::nan("");
     r.model_excluded_T_cd_over_N = excluded ? m.excluded->T_cd_over_N : std::nan("");
     r.model_excluded_T_ca_over_N = excluded ? m.excluded->T_ca_over_N : std::nan("");

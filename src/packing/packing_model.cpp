@@ -6,13 +6,16 @@
 
 namespace hgrid {
 
-PackingModels model_for_packing(const Packing& p, const std::vector<double>& sizes, Search search, double K) {
+PackingModels model_for_packing(const Packing& p, const std::vector<double>& sizes, Search search, double K,
+                                bool with_excluded) {
   if (p.size() == 0) throw InputError("packing", "no particles to model");
   const Empirical dist(p.radii);
   const ModelParams mp{p.d, p.packing_fraction(), K, search};
   PackingModels out;
   out.random = evaluate_model(dist, mp, sizes);
-  if (p.d != 3) {
+  if (!with_excluded) {
+    out.excluded_skipped = "not requested";
+  } else if (p.d != 3) {
     out.excluded_skipped = "the excluded-volume model is 3D only";
   } else if (!(mp.nu < 1.0)) {
     out.excluded_skipped = "packing fraction >= 1";

@@ -17,7 +17,9 @@ struct PackingModels {
 };
 
 /// Both models for the packing's radii (an empirical distribution) and
-/// packing fraction, for the sizes used (e.g. HGrid::sizes()).
-PackingModels model_for_packing(const Packing& p, const std::vector<double>& sizes, Search search, double K);
+/// packing fraction, for the sizes used (e.g. HGrid::sizes()); with
+/// with_excluded = false only the paper's (the other is seconds at omega = 100).
+PackingModels model_for_packing(const Packing& p, const std::vector<double>& sizes, Search search, double K,
+                                bool with_excluded = true);
 
 }  // namespace hgrid
