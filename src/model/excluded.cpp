@@ -237,11 +237,12 @@ ModelResult evaluate_excluded_model(const Distribution& dist, const ModelParams&
 }
 
 ExcludedSizes refine_sizes_excluded(const Distribution& dist, const ModelParams& p, std::vector<double> sizes,
-                                    const ExcludedOptions& opt) {
+                                    const ExcludedOptions& opt, const std::function<void(double, int, double)>& on_step) {
   ExcludedSizes out;
   out.model = evaluate_excluded_model(dist, p, sizes, opt);
   out.evaluations = 1;
   const int L = static_cast<int>(sizes.size());
+  int stage = 0;
   for (double step : {1.25, 1.1}) {
     for (bool improved = true; improved;) {
       improved = false;
@@ -257,8 +258,10 @@ ExcludedSizes refine_sizes_excluded(const Distribution& dist, const ModelParams&
             out.model = m;
             improved = true;
           }
+          if (on_step) on_step(std::min(0.99, 0.5 * (stage + (h + 1.0) / L)), out.evaluations, out.model.T_over_N);
         }
     }
+    ++stage;
   }
   out.sizes = sizes;
   return out;

@@ -3,6 +3,7 @@
 // structure of the polydisperse mixture (docs/MODEL.md section 8).
 #pragma once
 #include <array>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -50,7 +51,9 @@ struct ExcludedSizes {
   ModelResult model;
   int evaluations = 0;
 };
+/// on_step(fraction of the search done (an estimate), evaluations so far, best T/N) after each trial.
 ExcludedSizes refine_sizes_excluded(const Distribution& dist, const ModelParams& p, std::vector<double> sizes,
-                                    const ExcludedOptions& opt = {});
+                                    const ExcludedOptions& opt = {},
+                                    const std::function<void(double, int, double)>& on_step = {});
 
 }  // namespace hgrid

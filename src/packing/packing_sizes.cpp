@@ -5,6 +5,7 @@
 #include "model/cell_sizes.hpp"
 #include "model/distribution.hpp"
 #include "model/excluded.hpp"
+#include "packing/progress.hpp"
 #include "grid/error.hpp"
 
 namespace hgrid {
@@ -16,7 +17,10 @@ std::vector<double> model_sizes(const Packing& p, const SizeRequest& r, Search s
   std::vector<double> sizes = choose_cell_sizes(dist, mp, r.method, r.levels, r.q).sizes;
   if (r.excluded_model) {
     if (r.method != CellMethod::optimal) throw InputError("excluded-sizes", "applies to --cells optimal only");
-    sizes = refine_sizes_excluded(dist, mp, sizes).sizes;
+    Progress progress(true, "sizes under the excluded-volume model");
+    sizes = refine_sizes_excluded(dist, mp, sizes, {}, [&](double f, int n, double T) {
+              progress.update(f, std::to_string(n) + " evaluations, T/N " + format_number(T));
+            }).sizes;
   }
   return sizes_for_grid(sizes, 2 * dist.r_max());
 }
