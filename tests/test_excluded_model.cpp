@@ -109,7 +109,8 @@ TEST(ExcludedModel, ConvergedInItsDiscretisation) {
 
 TEST(ExcludedModel, MatchesAnIndependentEvaluation) {
   // Excess of T_cd/N over the paper model from a separate numpy/LAPACK
-  // implementation (k-space window transforms, LAPACK inverse of Q^T Q).
+  // implementation (k-space window transforms, LAPACK inverse of Q^T Q):
+  // python3 tests/independent/excluded_pins.py reproduces these numbers.
   struct Case { double alpha, omega, nu; std::vector<double> sizes; double excess; };
   const std::vector<Case> cases = {{-3, 10, 0.4, {4, 8, 20}, 0.618382},
                                    {-3, 100, 0.6, {6, 14, 30, 70, 200}, 2.551228},
