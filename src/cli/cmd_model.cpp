@@ -14,7 +14,7 @@
 #include "model/cell_sizes.hpp"
 #include "model/excluded.hpp"
 #include "packing/generate.hpp"
-#include "packing/progress.hpp"
+#include "packing/packing_sizes.hpp"
 #include "model/figures.hpp"
 #include "grid/error.hpp"
 #include "packing/packing.hpp"
@@ -86,11 +86,7 @@ void run_model(const ModelOptions& o) {
   const double T_excluded_paper_sizes = m.T_over_N;
   int evaluations = 0;
   if (o.excluded_sizes) {  // refine the paper's sizes under the excluded-volume model
-    Progress progress(true, "sizes under the excluded-volume model");
-    ExcludedSizes r = refine_sizes_excluded(*dist, p, choice.sizes, {}, [&](double f, int n, double T) {
-      progress.update(f, std::to_string(n) + " evaluations, T/N " + format_number(T));
-    });
-    progress.finish();
+    const ExcludedSizes r = refine_sizes_excluded_reported(*dist, p, choice.sizes);
     m = r.model;
     evaluations = r.evaluations;
     sizes.clear();

@@ -48,9 +48,13 @@ void apply_walls(const WallBox& box, double density, const std::vector<Bin>& bin
     for (std::size_t q = 0; q < bins.size(); ++q)
       if (bins[q].level == wi.level_searched) searched.push_back(prof[q]), prob.push_back(bins[q].P), P_j += bins[q].P;
     std::array<detail::AxisScan, 3> ax;
-    for (int k = 0; k < 3; ++k)
-      ax[k] = detail::scan_axis(box.extent[k], prof[wi.bin], sizes[wi.level_searched], own,
-                                a.r_mean + 0.5 * sizes[wi.level_searched], searched);
+    for (int k = 0; k < 3; ++k) {
+      int same = 0;  // an earlier axis of the same length (a cubic box): the same scan
+      while (same < k && box.extent[same] != box.extent[k]) ++same;
+      ax[k] = same < k ? ax[same]
+                       : detail::scan_axis(box.extent[k], prof[wi.bin], sizes[wi.level_searched], own,
+                                           a.r_mean + 0.5 * sizes[wi.level_searched], searched);
+    }
     double random = 0.0;  // expected level-j centres in the scan, per particle
     for (std::size_t q = 0; q < searched.size(); ++q)
       random += density * volume * prob[q] * ax[0].fraction[q] * ax[1].fraction[q] * ax[2].fraction[q];

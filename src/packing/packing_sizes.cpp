@@ -17,12 +17,17 @@ std::vector<double> model_sizes(const Packing& p, const SizeRequest& r, Search s
   std::vector<double> sizes = choose_cell_sizes(dist, mp, r.method, r.levels, r.q).sizes;
   if (r.excluded_model) {
     if (r.method != CellMethod::optimal) throw InputError("excluded-sizes", "applies to --cells optimal only");
-    Progress progress(true, "sizes under the excluded-volume model");
-    sizes = refine_sizes_excluded(dist, mp, sizes, {}, [&](double f, int n, double T) {
-              progress.update(f, std::to_string(n) + " evaluations, T/N " + format_number(T));
-            }).sizes;
+    sizes = refine_sizes_excluded_reported(dist, mp, sizes).sizes;
   }
   return sizes_for_grid(sizes, 2 * dist.r_max());
+}
+
+ExcludedSizes refine_sizes_excluded_reported(const Distribution& dist, const ModelParams& p,
+                                             const std::vector<double>& sizes) {
+  Progress progress(true, "sizes under the excluded-volume model");
+  return refine_sizes_excluded(dist, p, sizes, {}, [&](double f, int n, double T) {
+    progress.update(f, std::to_string(n) + " evaluations, T/N " + format_number(T));
+  });
 }
 
 }  // namespace hgrid

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "model/cell_sizes.hpp"
+#include "model/excluded.hpp"
 #include "packing/packing.hpp"
 #include "grid/params.hpp"
 
@@ -22,5 +23,9 @@ struct SizeRequest {
 /// distribution) and its packing fraction, ready for GridParams: strictly
 /// increasing (collapsed levels merged) and the last holding the largest particle.
 std::vector<double> model_sizes(const Packing& p, const SizeRequest& r, Search search, double K);
+
+/// refine_sizes_excluded with its progress (evaluations, best T/N, ETA) on stderr.
+ExcludedSizes refine_sizes_excluded_reported(const Distribution& dist, const ModelParams& p,
+                                             const std::vector<double>& sizes);
 
 }  // namespace hgrid
