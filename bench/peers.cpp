@@ -195,7 +195,7 @@ int run(Options o) {
     samples_agree = samples_agree && c == pairs["hgrid"];
     samples.push_back(sec);
   };
-  const std::vector<double> sizes = model_sizes(p, SizeRequest{CellMethod::optimal, {}, 1.0}, Search::top_down, 0.2);
+  const std::vector<double> sizes = model_sizes(p, SizeRequest{}, Search::top_down, 0.2);  // optimal
   const double rmax = *std::max_element(p.radii.begin(), p.radii.end());
   const bool linked = o.linked_cell || (!o.no_linked_cell && p.size() <= 200000);
   dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {

@@ -225,7 +225,7 @@ TEST(Calibrate, SceneListCoversTheRequestedRange) {
     for (const auto& s : scenes) {
       d2 |= s.packing.d == 2, d3 |= s.packing.d == 3, excl |= s.packing.placement == Placement::excluded;
       single |= s.cells == "single", a0 |= s.packing.alpha == 0, a3 |= s.packing.alpha == -3;
-      EXPECT_GE(s.packing.n, 20000u);
+      EXPECT_GE(s.packing.n, 10000u);  // down to the DPM test's N = 10^4 (quick)
       EXPECT_LE(s.packing.n, 200000u);
     }
     EXPECT_TRUE(d2 && d3 && excl && single && a0 && a3);

@@ -17,6 +17,8 @@
 #include "packing/packing.hpp"
 #include "experiment/timing.hpp"
 #include "io/packing_file.hpp"
+#include "model/distribution.hpp"
+#include "model/time_model.hpp"
 
 namespace hgrid::cli {
 namespace {
@@ -51,6 +53,7 @@ struct GridOptions {
   std::string file;
   std::string sizes;
   std::string search = "topdown";
+  std::string cost = "count";
   std::string cells;  // a cell-size method, parsed in resolve()
   SizeRequest request;
 };
@@ -65,6 +68,10 @@ void add_grid_options(CLI::App* sub, GridOptions& o) {
   sub->add_option("--q", o.request.q, "with --cells constant: ratio of particles per cell between levels")
       ->default_val(1.0);
   sub->add_option("--search", o.search, "cross-level search: topdown|bottomup")->default_val("topdown");
+  sub->add_option("--cost", o.cost,
+                  "with --cells optimal: what the sizes minimise: count (the paper's T = checks + K accesses) or "
+                  "time (this machine's predicted seconds of build + query; needs `hgrid calibrate`)")
+      ->default_val("count");
   sub->add_flag("--excluded-sizes", o.request.excluded_model,
                 "with --cells optimal: refine the sizes under the excluded-volume model (hard-sphere packings, 3D)");
 }
@@ -77,10 +84,13 @@ GridParams resolve(const GridOptions& o, const Packing& p, double K) {
   } else if (!o.cells.empty()) {
     SizeRequest r = o.request;
     r.method = parse_cell_method(o.cells);
+    if (parse_cost(o.cost) == CostKind::time) r.time_model = calibrated_time_model(p.d, "cost").coef;
     g.sizes = model_sizes(p, r, g.search, K);
   } else {
     throw InputError("sizes", "give --sizes s1,...,sL or --cells METHOD");
   }
+  if (parse_cost(o.cost) == CostKind::time && o.cells.empty())
+    throw InputError("cost", "'time' chooses sizes: give --cells optimal instead of --sizes");
   return g;
 }
 
@@ -167,6 +177,29 @@ nlohmann::json count_json(const Packing& p, const GridParams& g, const std::vect
   return j;
 }
 
+/// The time model's seconds (this machine's calibration) for the sizes used:
+/// predicted from the model's expected terms (predicted_seconds_*) and from
+/// the terms this query counted (predicted_seconds_*_from_counts).
+void add_predicted_seconds(nlohmann::json& j, const Packing& p, const std::vector<double>& used, Search search,
+                           double K, const TimeTerms& counted) {
+  const std::optional<Calibration> cal = stored_calibration();
+  const TimeModelFit* t = cal ? cal->time_model(p.d) : nullptr;
+  if (!t) {
+    j["time_model"] = "none: no calibration with a " + std::to_string(p.d) + "D time model at " + calibration_path() +
+                      " (run `hgrid calibrate`)";
+    return;
+  }
+  j["time_model"] = "calibration of " + cal->date + " on " + cal->machine;
+  const Empirical dist(p.radii);
+  const ModelParams mp{p.d, p.packing_fraction(), K, search};
+  const PredictedSeconds e = predict_seconds(t->coef, expected_time_terms(dist, mp, used, double(p.size())));
+  const PredictedSeconds c = predict_seconds(t->coef, counted);
+  j["predicted_seconds_build"] = e.build;
+  j["predicted_seconds_query"] = e.query;
+  j["predicted_seconds_build_from_counts"] = c.build;
+  j["predicted_seconds_query_from_counts"] = c.query;
+}
+
 void print_count_table(const nlohmann::json& j) {
   std::printf("n = %zu, d = %d, %s, nu = %.6g, search %s, K = %g\n", j["n"].get<std::size_t>(), j["d"].get<int>(),
               j["boundary"].get<std::string>().c_str(), j["packing_fraction"].get<double>(),
@@ -210,7 +243,9 @@ void run_count(const GridOptions& o, const std::string& K_text, int repeat, bool
     t0 = Clock::now();
     const Counters c = grid.template for_each_pair<Counted>([](std::uint32_t, std::uint32_t) {});
     const double t_query = seconds_since(t0);
-    return count_json(p, g, grid.sizes(), c, K, t_build, t_query);
+    nlohmann::json out = count_json(p, g, grid.sizes(), c, K, t_build, t_query);
+    add_predicted_seconds(out, p, grid.sizes(), g.search, K, counted_time_terms(c, grid.directory_words(), grid.sort_work()));
+    return out;
   });
   if (repeat > 0) {
     const QueryTiming t = time_query(p, g, TimingOptions{repeat, repeat, 0.0});
@@ -226,6 +261,11 @@ void run_count(const GridOptions& o, const std::string& K_text, int repeat, bool
   if (!as_json && repeat > 0)
     std::printf("wall time, fastest of %d uncounted runs: query %.6g s, build %.6g s\n", repeat,
                 j["seconds_query_best"].get<double>(), j["seconds_build_best"].get<double>());
+  if (!as_json && j.contains("predicted_seconds_query"))
+    std::printf("time model (%s): query %.6g s, build %.6g s (from the counts: %.6g s, %.6g s)\n",
+                j["time_model"].get<std::string>().c_str(), j["predicted_seconds_query"].get<double>(),
+                j["predicted_seconds_build"].get<double>(), j["predicted_seconds_query_from_counts"].get<double>(),
+                j["predicted_seconds_build_from_counts"].get<double>());
 }
 
 }  // namespace

@@ -28,6 +28,8 @@ struct ModelOptions {
   int d = 3;
   double nu = 0.7, alpha = -3.0, omega = 100.0, q = 1.0, sigma = 1.0;
   std::string K = "0.2", search = "topdown", cells = "optimal", dist = "powerlaw", radii_file, placement = "random";
+  std::string cost = "count";
+  double n = 1e6;  // particles, for --cost time
   int levels = 0;  // 0: search L*
   bool json = false, excluded_sizes = false;
 };
@@ -74,8 +76,18 @@ void run_model(const ModelOptions& o) {
   validate(p);
   const CellMethod method = parse_cell_method(o.cells);
   const auto dist = make_distribution(o);
-  const auto choice = choose_cell_sizes(*dist, p, method,
-                                        o.levels > 0 ? std::optional<int>(o.levels) : std::nullopt, o.q);
+  auto choice = choose_cell_sizes(*dist, p, method, o.levels > 0 ? std::optional<int>(o.levels) : std::nullopt, o.q);
+  std::optional<PredictedSeconds> seconds;  // --cost time: the time model's optimum replaces the count's
+  if (parse_cost(o.cost) == CostKind::time) {
+    if (method != CellMethod::optimal || o.levels > 0 || o.excluded_sizes)
+      throw InputError("cost", "'time' needs --cells optimal, without --levels or --excluded-sizes");
+    if (!(o.n >= 1 && o.n <= double(kMaxParticles))) throw InputError("n", "must be in [1, 2^31 - 1]");
+    const TimeOptimalSizes t = time_optimal_sizes(*dist, p, calibrated_time_model(p.d, "cost").coef, o.n);
+    choice.sizes = t.sizes;
+    choice.levels = static_cast<int>(t.sizes.size());
+    choice.model = evaluate_model(*dist, p, t.sizes);
+    seconds = t.seconds;
+  }
   std::vector<double> sizes;  // in units of r_min
   for (double s : choice.sizes) sizes.push_back(s / dist->r_min());
   const bool excluded = parse_placement(o.placement, "placement") == Placement::excluded;
@@ -100,6 +112,11 @@ void run_model(const ModelOptions& o) {
     j["T_cd_over_N"] = m.T_cd_over_N;
     j["T_ca_over_N"] = m.T_ca_over_N;
     if (excluded) j["T_over_N_random"] = choice.model.T_over_N;
+    if (seconds) {
+      j["predicted_seconds_build"] = seconds->build;
+      j["predicted_seconds_query"] = seconds->query;
+      j["n"] = o.n;
+    }
     if (o.excluded_sizes) {
       j["T_over_N_excluded_paper_sizes"] = T_excluded_paper_sizes;
       j["excluded_size_evaluations"] = evaluations;
@@ -119,6 +136,9 @@ void run_model(const ModelOptions& o) {
   std::printf("levels L = %d (%s)\nT/N = %.6f  (T_cd/N = %.6f, T_ca/N = %.6f, K = %g)%s\n", choice.levels,
               o.levels == 0 ? "best L*" : "given", m.T_over_N, m.T_cd_over_N, m.T_ca_over_N, p.K,
               excluded ? "  excluded-volume model" : "");
+  if (seconds)
+    std::printf("sizes minimise this machine's predicted seconds for N = %g: build %.4g s + query %.4g s\n", o.n,
+                seconds->build, seconds->query);
   if (excluded && !o.excluded_sizes) std::printf("random-centre model for the same sizes: T/N = %.6f\n", choice.model.T_over_N);
   if (o.excluded_sizes)
     std::printf("sizes refined under the excluded-volume model (%d evaluations); with the paper's sizes T/N = %.6f\n",
@@ -152,6 +172,11 @@ void register_model_commands(CLI::App& app) {
       ->capture_default_str();
   sub->add_flag("--excluded-sizes", o->excluded_sizes,
                "with --placement excluded: refine the sizes to minimise the excluded-volume model (slow at omega >= 50)");
+  sub->add_option("--cost", o->cost,
+                  "what the optimal sizes minimise: count (the paper's T) or time (this machine's predicted seconds "
+                  "of build + query, from `hgrid calibrate`)")
+      ->capture_default_str();
+  sub->add_option("--n", o->n, "with --cost time: number of particles")->capture_default_str();
   sub->add_flag("--json", o->json, "print JSON: levels, sizes (units of r_min), T_over_N, ...");
   sub->callback([o, lv] {
     if (lv->count() > 0 && o->levels < 1)

@@ -29,13 +29,20 @@ struct CalibrationScene {
 /// that accesses and checks vary independently. `quick`: fewer, smaller.
 std::vector<CalibrationScene> calibration_scenes(bool quick);
 
+/// Packings not used in the fit (other seeds, alpha, omega, nu, boundaries),
+/// each with a few cell sizes: the time model's predictions are judged here.
+std::vector<CalibrationScene> holdout_scenes(bool quick);
+
 struct CalibrationSample {
   CalibrationScene scene;
   std::size_t n = 0;
   int levels = 0;                  // levels actually used
   std::uint64_t accesses = 0, checks = 0, contacts = 0;
   double seconds = 0;              // fastest uncounted query
+  double build_seconds = 0;        // fastest build of the grid
   int repeats = 0;
+  TimeTerms terms;                 // the time model's terms, counted
+  bool holdout = false;            // measured, not fitted
 };
 
 /// Cell sizes of a scene for its packing.
@@ -58,8 +65,18 @@ Ratio ratio_with_error(double a, double b, double var_a, double var_b, double co
 /// Fills the fit fields only (no provenance).
 Calibration fit_calibration(const std::vector<CalibrationSample>& samples);
 
+/// The time model's coefficients (model/time_model.hpp) for dimension d,
+/// query and build separately, by non-negative least squares on relative
+/// residuals over that dimension's samples not marked holdout; its quality
+/// on those and on the holdout ones.
+TimeModelFit fit_time_model(const std::vector<CalibrationSample>& samples, int d);
+
+/// Quality of predictions against measurements (both > 0).
+FitQuality fit_quality(const std::vector<double>& predicted, const std::vector<double>& measured);
+
 struct CalibrateOptions {
   bool quick = false;
+  bool holdout = true;  // also measure the held-out scenes (not fitted)
   TimingOptions timing;
   /// Every scene is timed once per pass, the passes one after the other, and
   /// the fastest time is kept: a burst of load from other processes then

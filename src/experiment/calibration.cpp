@@ -6,6 +6,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <stdexcept>
+#include <string_view>
 #include <unistd.h>
 
 #include "grid/error.hpp"
@@ -14,7 +16,8 @@
 namespace hgrid {
 namespace {
 
-constexpr const char* kFormat = "hgridlab-calibration-1";
+constexpr const char* kFormat = "hgridlab-calibration-2";
+constexpr const char* kFormatV1 = "hgridlab-calibration-1";  // K only, before the time model
 
 const char* env(const char* name) {
   const char* v = std::getenv(name);
@@ -34,6 +37,65 @@ constexpr NumField kNumbers[] = {
     {"cov_cell_test", &Calibration::cov_cell_test}, {"r2", &Calibration::r2},
     {"rms_rel_residual", &Calibration::rms_rel_residual},
 };
+
+nlohmann::ordered_json quality_json(const FitQuality& q) {
+  return {{"r2_log", q.r2_log}, {"rms_rel_residual", q.rms_rel}, {"max_rel_residual", q.max_rel}, {"points", q.points}};
+}
+
+FitQuality quality_from(const nlohmann::json& j) {
+  FitQuality q;
+  q.r2_log = j.at("r2_log").get<double>();
+  q.rms_rel = j.at("rms_rel_residual").get<double>();
+  q.max_rel = j.at("max_rel_residual").get<double>();
+  q.points = j.at("points").get<int>();
+  return q;
+}
+
+template <std::size_t N>
+nlohmann::ordered_json terms_json(const std::array<std::string_view, N>& names, const std::array<double, N>& coef,
+                                  const std::array<double, N>& err) {
+  nlohmann::ordered_json j;
+  for (std::size_t k = 0; k < N; ++k) j[std::string(names[k])] = {{"seconds", coef[k]}, {"err", err[k]}};
+  return j;
+}
+
+template <std::size_t N>
+void terms_from(const nlohmann::json& j, const std::array<std::string_view, N>& names, std::array<double, N>& coef,
+                std::array<double, N>& err) {
+  for (std::size_t k = 0; k < N; ++k) {
+    const auto& t = j.at(std::string(names[k]));
+    coef[k] = t.at("seconds").get<double>();
+    err[k] = t.at("err").get<double>();
+    if (!(std::isfinite(coef[k]) && coef[k] >= 0)) throw std::invalid_argument(std::string(names[k]) + " < 0");
+  }
+}
+
+nlohmann::ordered_json time_json(const TimeModelFit& t) {
+  nlohmann::ordered_json j;
+  j["model"] = "seconds = sum over terms of (seconds per unit) x (count); docs/MODEL.md section 9";
+  j["query"] = terms_json(kQueryTermNames, t.coef.query, t.err.query);
+  j["build"] = terms_json(kBuildTermNames, t.coef.build, t.err.build);
+  j["fit_query"] = quality_json(t.query);
+  j["fit_build"] = quality_json(t.build);
+  j["fit_total"] = quality_json(t.total);
+  j["holdout_query"] = quality_json(t.holdout_query);
+  j["holdout_build"] = quality_json(t.holdout_build);
+  j["holdout_total"] = quality_json(t.holdout_total);
+  return j;
+}
+
+TimeModelFit time_from(const nlohmann::json& j) {
+  TimeModelFit t;
+  terms_from(j.at("query"), kQueryTermNames, t.coef.query, t.err.query);
+  terms_from(j.at("build"), kBuildTermNames, t.coef.build, t.err.build);
+  t.query = quality_from(j.at("fit_query"));
+  t.build = quality_from(j.at("fit_build"));
+  t.total = quality_from(j.at("fit_total"));
+  t.holdout_query = quality_from(j.at("holdout_query"));
+  t.holdout_build = quality_from(j.at("holdout_build"));
+  t.holdout_total = quality_from(j.at("holdout_total"));
+  return t;
+}
 
 }  // namespace
 
@@ -58,6 +120,9 @@ void save_calibration(const Calibration& c, const std::string& path) {
   j["git_hash"] = c.git_hash;
   j["compiler"] = c.compiler;
   j["preset"] = c.preset;
+  j["r2_log"] = c.r2_log;
+  for (int d = 2; d <= 3; ++d)
+    if (const TimeModelFit* t = c.time_model(d)) j["time_model"][std::to_string(d) + "D"] = time_json(*t);
   const std::filesystem::path target(path);
   if (target.has_parent_path()) std::filesystem::create_directories(target.parent_path());
   write_text_atomically(path, j.dump(2) + "\n", "calibration");
@@ -78,7 +143,9 @@ Calibration load_calibration(const std::string& path) {
     throw bad(std::string("invalid JSON: ") + e.what());
   }
   if (!j.is_object()) throw bad("not a JSON object");
-  if (j.value("format", std::string()) != kFormat) throw bad(std::string("'format' is not '") + kFormat + "'");
+  const std::string format = j.value("format", std::string());
+  if (format != kFormat && format != kFormatV1)
+    throw bad(std::string("'format' is not '") + kFormat + "' or '" + kFormatV1 + "'");
   Calibration c;
   for (const auto& f : kNumbers) {
     if (!j.contains(f.key) || !j[f.key].is_number()) throw bad(std::string("'") + f.key + "' missing or not a number");
@@ -95,6 +162,18 @@ Calibration load_calibration(const std::string& path) {
   c.git_hash = text("git_hash");
   c.compiler = text("compiler");
   c.preset = text("preset");
+  if (j.contains("r2_log") && j["r2_log"].is_number()) c.r2_log = j["r2_log"].get<double>();
+  if (format == kFormat && j.contains("time_model")) {
+    for (int d = 2; d <= 3; ++d) {
+      const std::string key = std::to_string(d) + "D";
+      if (!j["time_model"].contains(key)) continue;
+      try {
+        c.time[d - 2] = time_from(j["time_model"][key]);
+      } catch (const std::exception& e) {
+        throw bad("'time_model." + key + "': " + e.what());
+      }
+    }
+  }
   return c;
 }
 
@@ -107,6 +186,37 @@ double calibrated_K(const std::string& field) {
     throw InputError(field, "'auto' means the K measured on this machine, but " + why +
                                 "; run `hgrid calibrate` first (it writes " + path +
                                 "; HGRID_CALIBRATION overrides the path)");
+  }
+}
+
+TimeModelFit calibrated_time_model(int d, const std::string& field) {
+  const std::string path = calibration_path();
+  Calibration c;
+  try {
+    c = load_calibration(path);
+  } catch (const InputError& e) {
+    const std::string why = std::string(e.what()).substr(std::string("calibration: ").size());
+    throw InputError(field, "the time model is this machine's, but " + why + "; run `hgrid calibrate` first (it writes " +
+                                path + "; HGRID_CALIBRATION overrides the path)");
+  }
+  if (!c.time_model(d))
+    throw InputError(field, "the calibration at '" + path + "' has no " + std::to_string(d) +
+                                "D time model (written before it existed); run `hgrid calibrate` again");
+  return *c.time_model(d);
+}
+
+CostKind parse_cost(const std::string& text, const std::string& field) {
+  if (text == "count") return CostKind::count;
+  if (text == "time") return CostKind::time;
+  throw InputError(field, "must be 'count' (the paper's T = checks + K accesses) or 'time' (this machine's "
+                          "predicted seconds; needs `hgrid calibrate`), got '" + text + "'");
+}
+
+std::optional<Calibration> stored_calibration() {
+  try {
+    return load_calibration(calibration_path());
+  } catch (const InputError&) {
+    return std::nullopt;
   }
 }
 

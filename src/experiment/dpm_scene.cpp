@@ -4,6 +4,9 @@
 // detection; kinetic energy against time; the model's predicted speed-up.
 #include "experiment/dpm_scene.hpp"
 
+#include "experiment/calibration.hpp"
+#include "model/time_model.hpp"
+
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -214,6 +217,18 @@ void run_dpm_scene(const std::string& path, const std::string& scale, const RunO
       {"K_effective", c_access / c_check},
       {"haff", {{"t0", haff.t0}, {"E0", haff.E0}, {"r2", haff.r2}}},
   };
+  // The time model's contact-detection speed-up (build + query per step) for
+  // the two grids on this run's radii, with this machine's calibration.
+  const std::optional<Calibration> cal = stored_calibration();
+  if (const TimeModelFit* t = cal ? cal->time_model(p.d) : nullptr) {
+    const double n = static_cast<double>(p.size());
+    const double lc = predict_seconds(t->coef, expected_time_terms(own, mp_own, lc_sizes, n)).total();
+    const double og = predict_seconds(t->coef, expected_time_terms(own, mp_own, opt_sizes, n)).total();
+    out["predicted_speedup_seconds"] = lc / og;
+    out["time_model"] = "calibration of " + cal->date + " on " + cal->machine;
+  } else {
+    out["time_model"] = "none: no calibration with a " + std::to_string(p.d) + "D time model (run hgrid calibrate)";
+  }
   for (const auto& [k, v] : provenance_fields()) out[k] = v;
 
   std::filesystem::create_directories(opt.results_dir);
@@ -258,7 +273,11 @@ void run_dpm_scene(const std::string& path, const std::string& scale, const RunO
   else
     std::cout << sc.name << " (" << scale << "): speed-up contact detection "
               << out["speedup_contact_detection"].get<double>() << " (predicted "
-              << out["predicted_speedup_contact_detection"].get<double>() << "), whole run "
+              << out["predicted_speedup_contact_detection"].get<double>()
+              << (out.contains("predicted_speedup_seconds")
+                      ? "; time model " + format_number(out["predicted_speedup_seconds"].get<double>())
+                      : std::string())
+              << "), whole run "
               << out["speedup_total"].get<double>() << "; results in " << stem << ".h5 and .csv\n";
 }
 

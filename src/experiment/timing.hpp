@@ -1,7 +1,9 @@
 // Wall-clock time of one contact search: best of repeated uncounted queries.
 #pragma once
+#include <cstdint>
 #include <vector>
 
+#include "grid/build_work.hpp"
 #include "grid/counters.hpp"
 #include "packing/packing.hpp"
 #include "grid/params.hpp"
@@ -23,6 +25,8 @@ struct QueryTiming {
   double build_seconds = 0;   // fastest construction of the grid
   double median_query_seconds = 0;
   int repeats = 0;
+  std::uint64_t directory_words = 0;  // HGrid::directory_words() (a term of the time model)
+  SortWork sort_work;                 // HGrid::sort_work() (likewise)
 };
 
 /// Builds the grid and runs one counted query, then repeats build + uncounted

@@ -17,6 +17,27 @@ struct Counters {
   std::vector<std::uint64_t> accesses_by_level;
   std::vector<std::uint64_t> checks_by_level;
 
+  // How this implementation spends its time beyond the paper's two counts
+  // (docs/MODEL.md section 9, the time model): the same-level phase visits
+  // each non-empty cell once; a cross-level search walks its box a row of
+  // cells (along the last axis) at a time, or, when the box holds more
+  // cells than the searched level holds particles, scans that level's
+  // particles instead. A level with many more cells than particles keeps
+  // its non-empty cells in a hash table, where every cell of a stencil or
+  // box is one look-up (a probe). L x L where marked, like the matrices above.
+  std::uint64_t occupied_cells = 0;           // non-empty cells visited (same-level phase)
+  std::uint64_t searches = 0;                 // cross-level searches (one per particle and level searched)
+  std::uint64_t rows = 0;                     // rows of cells walked by the cross-level searches
+  std::uint64_t scanned = 0;                  // particles scanned instead of walking a box
+  std::uint64_t probes = 0;                   // cells looked up one by one in a hashed level's table
+  /// Narrow-phase checks of candidates gathered from short ranges (at most
+  /// 4 particles) into one index list and tested without a branch; the
+  /// others test contiguous runs of the sorted particles.
+  std::uint64_t list_checks = 0;
+  std::vector<std::uint64_t> occupied_by_level;  // L
+  std::vector<std::uint64_t> searches_by_level;  // L x L
+  std::vector<std::uint64_t> rows_by_level;      // L x L
+
   /// The paper's cost T = T_cd + K * T_ca (Eq. 27) for these counts.
   double cost(double K) const {
     return static_cast<double>(narrow_phase_checks) + K * static_cast<double>(cell_accesses);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "grid/build_work.hpp"
 #include "grid/counters.hpp"
 #include "grid/detail/levels.hpp"
 #include "grid/detail/stencil.hpp"
@@ -75,6 +76,20 @@ class HGrid {
       ++out[start_[b + 1] - start_[b] >= 2 ? 2 : 1];
     });
     return out;
+  }
+  /// Size of the cell directory the build fills: bitmap words of the ranked
+  /// levels (one per 64 cells, plus one) and table slots of the hashed ones.
+  std::uint64_t directory_words() const { return words_.size(); }
+  std::uint64_t directory_slots() const { return keys_.size(); }
+  /// The sort's passes (grid/build_work.hpp) of the last build.
+  SortWork sort_work() const {
+    SortWork w;
+    for (std::size_t h = 0; h < levels_.size(); ++h) {
+      const LevelSortWork l = level_sort_work(levels_[h].cells(), size());
+      w.particle_passes += double(l.passes) * double(level_begin_[h + 1] - level_begin_[h]);
+      w.bucket_passes += double(l.passes) * double(l.buckets);
+    }
+    return w;
   }
   const GridParams& params() const { return params_; }
   const Extent<D>& box() const { return box_; }

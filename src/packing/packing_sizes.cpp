@@ -14,6 +14,12 @@ std::vector<double> model_sizes(const Packing& p, const SizeRequest& r, Search s
   if (p.size() == 0) throw InputError("cells", "the packing has no particles to fit sizes to");
   const Empirical dist(p.radii);
   const ModelParams mp{p.d, p.packing_fraction(), K, search};
+  if (r.time_model) {
+    if (r.method != CellMethod::optimal) throw InputError("cost", "'time' applies to --cells optimal only");
+    if (r.excluded_model) throw InputError("cost", "'time' and --excluded-sizes do not combine");
+    if (r.levels) throw InputError("cost", "'time' chooses the number of levels itself; drop --levels");
+    return time_optimal_sizes(dist, mp, *r.time_model, static_cast<double>(p.size())).sizes;
+  }
   std::vector<double> sizes = choose_cell_sizes(dist, mp, r.method, r.levels, r.q).sizes;
   if (r.excluded_model) {
     if (r.method != CellMethod::optimal) throw InputError("excluded-sizes", "applies to --cells optimal only");

@@ -6,6 +6,7 @@
 
 #include "model/cell_sizes.hpp"
 #include "model/excluded.hpp"
+#include "model/time_model.hpp"
 #include "packing/packing.hpp"
 #include "grid/params.hpp"
 
@@ -17,6 +18,10 @@ struct SizeRequest {
   double q = 1.0;
   /// optimal only: refine the sizes under the excluded-volume model (3D).
   bool excluded_model = false;
+  /// optimal only: minimise the time model's predicted seconds of one build
+  /// + query with these coefficients (this machine's, from `hgrid
+  /// calibrate`) instead of T (time_optimal_sizes).
+  std::optional<TimeCoefficients> time_model;
 };
 
 /// Sizes from the cost model for the packing's radii (an empirical

@@ -65,4 +65,32 @@ LinearFit least_squares(const std::vector<std::vector<double>>& X, const std::ve
   return f;
 }
 
+LinearFit nonnegative_least_squares(const std::vector<std::vector<double>>& X, const std::vector<double>& y) {
+  const std::size_t p = X.empty() ? 0 : X[0].size();
+  std::vector<std::size_t> active(p);
+  for (std::size_t k = 0; k < p; ++k) active[k] = k;
+  for (;;) {
+    std::vector<std::vector<double>> Xa(X.size(), std::vector<double>(active.size()));
+    for (std::size_t i = 0; i < X.size(); ++i)
+      for (std::size_t k = 0; k < active.size(); ++k) Xa[i][k] = X[i].at(active[k]);
+    const LinearFit fa = least_squares(Xa, y);
+    std::size_t worst = active.size();
+    for (std::size_t k = 0; k < active.size(); ++k)
+      if (fa.coef[k] < 0 && (worst == active.size() || fa.coef[k] < fa.coef[worst])) worst = k;
+    if (worst == active.size() || active.size() == 1) {
+      LinearFit f;
+      f.chi2 = fa.chi2;
+      f.dof = fa.dof;
+      f.coef.assign(p, 0.0);
+      f.cov.assign(p, std::vector<double>(p, 0.0));
+      for (std::size_t k = 0; k < active.size(); ++k) {
+        f.coef[active[k]] = std::max(0.0, fa.coef[k]);
+        for (std::size_t l = 0; l < active.size(); ++l) f.cov[active[k]][active[l]] = fa.cov[k][l];
+      }
+      return f;
+    }
+    active.erase(active.begin() + static_cast<std::ptrdiff_t>(worst));
+  }
+}
+
 }  // namespace hgrid::detail

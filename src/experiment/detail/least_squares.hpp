@@ -18,4 +18,11 @@ struct LinearFit {
 /// Throws std::invalid_argument for n <= p, ragged rows or non-finite input.
 LinearFit least_squares(const std::vector<std::vector<double>>& X, const std::vector<double>& y);
 
+/// The same with every coefficient >= 0 (costs cannot be negative): fits,
+/// then drops the column of the most negative coefficient and fits again
+/// until none is negative (an active-set method that only removes). A
+/// dropped column's coefficient, and its row and column of the covariance,
+/// are 0. Needs more rows than columns left.
+LinearFit nonnegative_least_squares(const std::vector<std::vector<double>>& X, const std::vector<double>& y);
+
 }  // namespace hgrid::detail

@@ -135,6 +135,21 @@ void HGrid<D, B>::cross_level(std::uint32_t p, int h, int j, F& f, Counters& out
     }
   };
   const std::uint32_t first = level_begin_[j], last = level_begin_[j + 1];
+  if constexpr (Count::enabled) {
+    std::uint64_t rows = 1;  // the box's extent along every axis but the row axis D-1
+    for (int a = 0; a + 1 < D; ++a) rows *= static_cast<std::uint64_t>(hi[a] - lo[a] + 1);
+    const int L = levels();
+    ++out.searches;
+    ++out.searches_by_level[h * L + j];
+    if (accessed > last - first) {
+      out.scanned += last - first;
+    } else if (!lv.ranked) {
+      out.probes += accessed;
+    } else {
+      out.rows += rows;
+      out.rows_by_level[h * L + j] += rows;
+    }
+  }
   if (accessed > last - first) {
     // The box holds more cells than level j holds particles: visit the
     // particles and keep those whose cell is in the box. Same pairs, same
@@ -169,6 +184,7 @@ void HGrid<D, B>::cross_level(std::uint32_t p, int h, int j, F& f, Counters& out
     int n_batch = 0;
     auto test_cand = [&](std::uint32_t n_cand) {
       checked += n_cand;
+      if constexpr (Count::enabled) out.list_checks += n_cand;
       if (plain) test_list<Count, Boundary::walls>(p, cand.data(), n_cand, f, out);
       else test_list<Count>(p, cand.data(), n_cand, f, out);
     };
@@ -266,6 +282,9 @@ Counters HGrid<D, B>::query(F&& f_user) const {
   if constexpr (Count::enabled) {
     out.accesses_by_level.assign(L * L, 0);
     out.checks_by_level.assign(L * L, 0);
+    out.occupied_by_level.assign(L, 0);
+    out.searches_by_level.assign(L * L, 0);
+    out.rows_by_level.assign(L * L, 0);
   }
   // A cell's half-stencil candidates: short ranges (most, on a sparse level)
   // as one list of indices appended without a data-dependent branch, longer
@@ -278,6 +297,10 @@ Counters HGrid<D, B>::query(F&& f_user) const {
     const StencilRows rows = stencil_rows(lv);
     for_each_cell(lv, [&](std::uint64_t b, std::uint64_t key) {
       const std::uint32_t beg = start_[b], end = start_[b + 1];
+      if constexpr (Count::enabled) {
+        ++out.occupied_cells;
+        ++out.occupied_by_level[h];
+      }
       // Same level (linked cell): the half stencil is shared by the cell's
       // particles, nb_particles of them: n_cand in short ranges, the rest in
       // n_nb long ones.
@@ -291,6 +314,7 @@ Counters HGrid<D, B>::query(F&& f_user) const {
         nb_particles += qe - qb;
         if (!append_short(cand, n_cand, qb, qe)) nb[n_nb++] = {qb, qe};
       });
+      if constexpr (Count::enabled) out.probes += lv.ranked ? 0 : nb_cells;
       const bool plain = rows.plain_dx && interior;
       const auto tests = [&]<Boundary TB>(std::uint32_t p) {
         for (std::uint32_t q = p + 1; q < end; ++q) test<Count, TB>(p, q, f, out);
@@ -306,6 +330,7 @@ Counters HGrid<D, B>::query(F&& f_user) const {
           const std::uint64_t chk = (end - p - 1) + nb_particles;
           out.cell_accesses += acc;
           out.narrow_phase_checks += chk;
+          out.list_checks += n_cand;
           out.accesses_by_level[h * L + h] += acc;
           out.checks_by_level[h * L + h] += chk;
         }

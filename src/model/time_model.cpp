@@ -1,0 +1,188 @@
+// The time model's terms: counted (from a counted query) and expected (from
+// the cost model's integrals); the time-optimal cell sizes. docs/MODEL.md section 9.
+#include "model/time_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "grid/geometry.hpp"
+#include "model/cell_sizes.hpp"
+
+namespace hgrid {
+
+namespace {
+
+// The grid's choice of directory (grid/detail/levels.hpp): a rank bitmap
+// while a level has at most this many cells per particle plus a constant.
+constexpr double kRankCellsPerParticle = 64;
+constexpr double kRankMinCells = 65536;
+constexpr double kBitsPerWord = 64;
+// A range of more than this many particles is tested as a run, a shorter
+// one gathered into the candidate list (HGrid::kShortRange).
+constexpr int kShortRange = 4;
+
+/// Expected checks in long ranges, E[X 1(X > kShortRange)], for a range
+/// holding X ~ Poisson(mu) particles: mu P(Poisson(mu) >= kShortRange).
+double run_part(double mu) {
+  if (!(mu > 0)) return 0;
+  double term = std::exp(-mu), below = 0;
+  for (int i = 0; i < kShortRange; ++i) {
+    below += term;
+    term *= mu / (i + 1);
+  }
+  return mu * std::max(0.0, 1.0 - below);
+}
+
+// The coordinate search of time_optimal_sizes.
+constexpr int kExtraLevels = 3;             // L from 1 to L* + this
+constexpr double kSteps[] = {1.25, 1.1, 1.03};
+
+}  // namespace
+
+std::array<double, kQueryTerms> query_terms(const TimeTerms& t) {
+  return {t.particles, t.occupied_cells, t.run_checks, t.list_checks, t.searches, t.rows, t.scanned, t.probes};
+}
+
+std::array<double, kBuildTerms> build_terms(const TimeTerms& t) {
+  return {t.particles, t.level_steps, t.sort_passes, t.bucket_passes, t.directory_words};
+}
+
+PredictedSeconds predict_seconds(const TimeCoefficients& c, const TimeTerms& t) {
+  PredictedSeconds out;
+  const auto q = query_terms(t);
+  const auto b = build_terms(t);
+  for (int k = 0; k < kQueryTerms; ++k) out.query += c.query[k] * q[k];
+  for (int k = 0; k < kBuildTerms; ++k) out.build += c.build[k] * b[k];
+  return out;
+}
+
+TimeTerms counted_time_terms(const Counters& c, std::uint64_t directory_words, const SortWork& sort) {
+  TimeTerms t;
+  t.particles = static_cast<double>(c.particles());
+  t.occupied_cells = static_cast<double>(c.occupied_cells);
+  t.list_checks = static_cast<double>(c.list_checks);
+  t.run_checks = static_cast<double>(c.narrow_phase_checks) - t.list_checks;
+  t.searches = static_cast<double>(c.searches);
+  t.rows = static_cast<double>(c.rows);
+  t.scanned = static_cast<double>(c.scanned);
+  t.probes = static_cast<double>(c.probes);
+  t.directory_words = static_cast<double>(directory_words);
+  t.sort_passes = sort.particle_passes;
+  t.bucket_passes = sort.bucket_passes;
+  for (int h = 0; h < c.levels; ++h) t.level_steps += double(h) * double(c.particles_per_level[h]);
+  return t;
+}
+
+TimeTerms expected_time_terms(const Distribution& dist, const ModelParams& p, const std::vector<double>& s,
+                              double n) {
+  const ModelResult m = evaluate_model(dist, p, s);  // validates p and the sizes
+  const int L = m.levels(), d = p.d;
+  const bool td = p.search == Search::top_down;
+  const double vp = unit_ball_volume(d) * dist.moment(d, 0.0, dist.r_max());
+  TimeTerms t;
+  t.particles = n;
+  double checks = n * m.T_cd_over_N;
+  const double half_stencil = d == 2 ? 4 : 13;  // (3^d - 1) / 2 neighbour cells
+  std::vector<char> ranked(L);
+  for (int h = 0; h < L; ++h) {
+    const double nh = n * m.P[h];
+    const double cells = n * vp / (p.nu * std::pow(s[h], d));  // box volume / s_h^d
+    ranked[h] = cells <= kRankCellsPerParticle * nh + kRankMinCells;
+    const double occupied = nh > 0 ? cells * -std::expm1(-nh / cells) : 0.0;  // Poisson occupancy
+    t.occupied_cells += occupied;
+    t.level_steps += h * nh;
+    const LevelSortWork sw = level_sort_work(static_cast<std::uint64_t>(std::max(1.0, cells)),
+                                             static_cast<std::uint64_t>(n));
+    t.sort_passes += sw.passes * nh;
+    t.bucket_passes += sw.passes * double(sw.buckets);
+    const double mh = nh / cells;
+    // Same level, per particle: the rest of its own cell (a run, m/2 on
+    // average); on a ranked level the half stencil's rows of 3 cells
+    // ((3^(d-1) - 1) / 2 of them) and the next cell of its own row, on a
+    // hashed one the half stencil's cells one by one.
+    double runs = 0.5 * mh;
+    if (ranked[h]) {
+      t.directory_words += std::floor(cells / kBitsPerWord) + 1;
+      runs += (half_stencil - 1) / 3 * run_part(3 * mh) + run_part(mh);
+    } else {
+      t.probes += occupied * half_stencil;
+      runs += half_stencil * run_part(mh);
+    }
+    t.run_checks += nh * runs;
+  }
+  for (int h = 0; h < L; ++h) {
+    const double nh = n * m.P[h];
+    if (!(nh > 0)) continue;
+    const double lo = h == 0 ? 0.0 : 0.5 * s[h - 1], hi = 0.5 * s[h];
+    for (int j = td ? 0 : h + 1; j < (td ? h : L); ++j) {
+      t.searches += nh;
+      const double nj = n * m.P[j];
+      const double box = cross_level_cells(dist, d, s, j + 1, h + 1);
+      const double pair_checks = n * m.T_cd_pair[h * L + j];
+      if (box > nj) {  // the scan tests each particle in the box as it finds it: runs
+        t.scanned += nh * nj;
+        t.run_checks += pair_checks;
+        continue;
+      }
+      if (!ranked[j]) {  // a hashed level's cells are tested as ranges, one by one: runs
+        t.probes += nh * box;
+        t.run_checks += pair_checks;
+        continue;
+      }
+      // n int over level h of (2 + 2r/s_j)^(d-1) f(r) dr, expanded in moments.
+      double rows = 0, binom = 1;
+      for (int i = 0; i < d; ++i) {
+        rows += std::pow(2.0, d - 1) * binom * std::pow(s[j], -i) * dist.moment(i, lo, hi);
+        binom = binom * (d - 1 - i) / (i + 1);
+      }
+      t.rows += n * rows;
+      // A row of the box holds box / rows cells, each m_j particles on average.
+      const double per_row = rows > 0 ? box * m.P[h] / rows * (nj / (n * vp / (p.nu * std::pow(s[j], d)))) : 0;
+      if (per_row > 0) t.run_checks += pair_checks * run_part(per_row) / per_row;
+    }
+  }
+  t.list_checks = checks - t.run_checks;
+  return t;
+}
+
+TimeOptimalSizes time_optimal_sizes(const Distribution& dist, const ModelParams& p, const TimeCoefficients& c,
+                                    double n) {
+  const double top = 2.0 * dist.r_max(), bottom = 2.0 * dist.r_min();
+  TimeOptimalSizes best;
+  double best_seconds = std::numeric_limits<double>::infinity();
+  const auto seconds = [&](const std::vector<double>& s) {
+    ++best.evaluations;
+    return predict_seconds(c, expected_time_terms(dist, p, sizes_for_grid(s, top), n)).total();
+  };
+  const int L_star = choose_cell_sizes(dist, p, CellMethod::optimal).levels;
+  for (int L = 1; L <= L_star + kExtraLevels; ++L) {
+    std::vector<double> s = L == 1 ? std::vector<double>{top} : cell_sizes(dist, p, CellMethod::optimal, L);
+    double here = seconds(s);
+    for (const double step : kSteps) {
+      for (bool improved = true; improved;) {
+        improved = false;
+        for (int h = 0; h + 1 < L; ++h)
+          for (const double f : {1.0 / step, step}) {
+            std::vector<double> trial = s;
+            trial[h] *= f;
+            if (trial[h] < bottom || (h > 0 && !(trial[h] > trial[h - 1])) || !(trial[h] < trial[h + 1])) continue;
+            const double v = seconds(trial);
+            if (v < here) {
+              s = trial;
+              here = v;
+              improved = true;
+            }
+          }
+      }
+    }
+    if (here < best_seconds) {
+      best_seconds = here;
+      best.sizes = sizes_for_grid(s, top);
+    }
+  }
+  best.seconds = predict_seconds(c, expected_time_terms(dist, p, best.sizes, n));
+  return best;
+}
+
+}  // namespace hgrid
