@@ -81,7 +81,7 @@ TEST(TimeModel, ExpectedTermsFollowTheCountsOnRandomCentres) {
   const HGrid<3, Boundary::periodic> grid(std::span<const Sphere<3>>(s.spheres), s.box,
                                           GridParams{sizes, Search::top_down});
   const Counters c = grid.for_each_pair<Counted>([](std::uint32_t, std::uint32_t) {});
-  const TimeTerms counted = counted_time_terms(c, grid.directory_words(), grid.sort_work());
+  const TimeTerms counted = counted_time_terms(c, build_work(grid));
   const TimeTerms expected = expected_time_terms(dist, mp, grid.sizes(), double(s.spheres.size()));
   const auto cq = query_terms(counted), eq = query_terms(expected);
   const double n = double(s.spheres.size());
@@ -109,6 +109,8 @@ std::vector<CalibrationSample> synthetic_samples(const TimeCoefficients& c, int 
     t.rows = n * 0.7 * ((i * 2) % 17);
     t.scanned = n * 0.01 * (i % 4);
     t.probes = n * 0.3 * ((i * 11) % 5);
+    t.contacts = n * (1 + 0.5 * ((i * 7) % 5));
+    t.directory_slots = n * 0.2 * ((i * 5) % 3);
     t.level_steps = n * 0.05 * (i % 6);
     t.sort_passes = n * (1 + i % 3);
     t.bucket_passes = 10 + 3 * ((i * 13) % 7);
@@ -125,8 +127,8 @@ std::vector<CalibrationSample> synthetic_samples(const TimeCoefficients& c, int 
 
 TEST(TimeModel, FitRecoversKnownCoefficients) {
   TimeCoefficients c;
-  c.query = {20e-9, 5e-9, 2e-9, 3e-9, 15e-9, 4e-9, 6e-9, 10e-9};
-  c.build = {20e-9, 5e-9, 9e-9, 2e-6, 30e-9};
+  c.query = {20e-9, 5e-9, 2e-9, 3e-9, 15e-9, 4e-9, 6e-9, 10e-9, 7e-9};
+  c.build = {20e-9, 5e-9, 9e-9, 2e-6, 30e-9, 4e-9};
   const TimeModelFit f = fit_time_model(synthetic_samples(c, 3, 48), 3);
   for (int k = 0; k < kQueryTerms; ++k) EXPECT_NEAR(f.coef.query[k], c.query[k], kFitRelTol * c.query[k]) << k;
   for (int k = 0; k < kBuildTerms; ++k) EXPECT_NEAR(f.coef.build[k], c.build[k], kFitRelTol * c.build[k]) << k;
@@ -140,8 +142,8 @@ TEST(TimeModel, FitRecoversKnownCoefficients) {
 
 TEST(TimeModel, NonNegativeFitDropsANegativeCost) {
   TimeCoefficients c;
-  c.query = {20e-9, 5e-9, 2e-9, 3e-9, 15e-9, 4e-9, 6e-9, 10e-9};
-  c.build = {20e-9, 5e-9, 9e-9, 2e-6, 30e-9};
+  c.query = {20e-9, 5e-9, 2e-9, 3e-9, 15e-9, 4e-9, 6e-9, 10e-9, 7e-9};
+  c.build = {20e-9, 5e-9, 9e-9, 2e-6, 30e-9, 4e-9};
   auto samples = synthetic_samples(c, 2, 40);
   // A term the times do not depend on, with noise that would fit negative.
   for (std::size_t i = 0; i < samples.size(); ++i) samples[i].seconds *= 1 + 0.02 * ((i % 3) - 1.0);
@@ -154,8 +156,8 @@ TEST(TimeModel, RecordRoundTripsAndOldRecordsLoad) {
   Calibration c;
   c.K = 0.8, c.c_cell = 1.6e-9, c.c_test = 2e-9, c.points = 30, c.preset = "test";
   TimeModelFit t;
-  t.coef.query = {1e-8, 2e-9, 3e-9, 4e-9, 5e-9, 6e-9, 7e-9, 8e-9};
-  t.coef.build = {9e-9, 1e-9, 2e-9, 3e-6, 4e-9};
+  t.coef.query = {1e-8, 2e-9, 3e-9, 4e-9, 5e-9, 6e-9, 7e-9, 8e-9, 9e-9};
+  t.coef.build = {9e-9, 1e-9, 2e-9, 3e-6, 4e-9, 5e-9};
   t.query = {0.99, 0.05, 0.1, 30};
   t.holdout_total = {0.98, 0.07, 0.15, 18};
   c.time[1] = t;
@@ -178,8 +180,8 @@ TEST(TimeModel, RecordRoundTripsAndOldRecordsLoad) {
 
 TEST(TimeModel, TimeOptimalSizesPredictNoMoreThanTheCountOptimum) {
   TimeCoefficients c;
-  c.query = {20e-9, 0, 2e-9, 3e-9, 20e-9, 4e-9, 6e-9, 10e-9};
-  c.build = {20e-9, 5e-9, 9e-9, 2e-6, 30e-9};
+  c.query = {20e-9, 0, 2e-9, 3e-9, 20e-9, 4e-9, 6e-9, 10e-9, 7e-9};
+  c.build = {20e-9, 5e-9, 9e-9, 2e-6, 30e-9, 4e-9};
   const PowerLaw dist(-3, 50);
   const ModelParams mp{3, 0.5, 0.2, Search::top_down};
   const double n = 1e5;

@@ -113,6 +113,7 @@ void run(const CalibrateArgs& a) {
     };
     show("query, fitted:", t.query);
     show("build, fitted:", t.build);
+    show("build + query, fitted:", t.total);
     show("query, held out:", t.holdout_query);
     show("build + query, held out:", t.holdout_total);
   }

@@ -244,7 +244,7 @@ void run_count(const GridOptions& o, const std::string& K_text, int repeat, bool
     const Counters c = grid.template for_each_pair<Counted>([](std::uint32_t, std::uint32_t) {});
     const double t_query = seconds_since(t0);
     nlohmann::json out = count_json(p, g, grid.sizes(), c, K, t_build, t_query);
-    add_predicted_seconds(out, p, grid.sizes(), g.search, K, counted_time_terms(c, grid.directory_words(), grid.sort_work()));
+    add_predicted_seconds(out, p, grid.sizes(), g.search, K, counted_time_terms(c, build_work(grid)));
     return out;
   });
   if (repeat > 0) {

@@ -72,7 +72,7 @@ std::vector<CalibrationScene> calibration_scenes(bool quick) {
     const auto add = [&](const std::string& cells, std::optional<int> L, double K) {
       out.push_back(CalibrationScene{p, cells, L, K});
     };
-    if (p.omega <= 10) add("single", 1, 0.2);
+    if (p.omega <= 20) add("single", 1, 0.2);
     for (double K : quick ? std::vector<double>{0.02, 0.2, 5} : std::vector<double>{0.02, 0.2, 1, 5})
       add("optimal", std::nullopt, K);
     add("exponential", 6, 0.2);
@@ -118,7 +118,7 @@ CalibrationSample measure_scene(const CalibrationScene& s, const Packing& p, con
   out.seconds = t.query_seconds;
   out.build_seconds = t.build_seconds;
   out.repeats = t.repeats;
-  out.terms = counted_time_terms(t.counts, t.directory_words, t.sort_work);
+  out.terms = counted_time_terms(t.counts, t.build_work);
   return out;
 }
 

@@ -43,7 +43,10 @@ PointResult run_point(const Scene& scene, const ScenePoint& point, const RunOpti
   r.nu_achieved = p.packing_fraction();
 
   t0 = Clock::now();
-  const SizeRequest req{scene.grid.cells, scene.grid.levels, scene.grid.q};
+  SizeRequest req;
+  req.method = scene.grid.cells;
+  req.levels = scene.grid.levels;
+  req.q = scene.grid.q;
   const std::vector<double> sizes = model_sizes(p, req, point.search, scene.grid.K);
   r.seconds_sizes = since(t0);
 

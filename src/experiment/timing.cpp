@@ -24,8 +24,7 @@ QueryTiming time_query(const Packing& p, const GridParams& g, const TimingOption
       const HGrid<D, B> grid(spheres, p.extent<D>(), g);
       out.counts = grid.template for_each_pair<Counted>([](std::uint32_t, std::uint32_t) {});
       out.sizes = grid.sizes();
-      out.directory_words = grid.directory_words();
-      out.sort_work = grid.sort_work();
+      out.build_work = build_work(grid);
     }
     std::vector<double> queries;
     double total = 0, best_build = 1e300;

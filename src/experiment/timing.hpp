@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "grid/build_work.hpp"
+#include "model/time_model.hpp"
 #include "grid/counters.hpp"
 #include "packing/packing.hpp"
 #include "grid/params.hpp"
@@ -25,8 +25,7 @@ struct QueryTiming {
   double build_seconds = 0;   // fastest construction of the grid
   double median_query_seconds = 0;
   int repeats = 0;
-  std::uint64_t directory_words = 0;  // HGrid::directory_words() (a term of the time model)
-  SortWork sort_work;                 // HGrid::sort_work() (likewise)
+  BuildWork build_work;       // what the build did (terms of the time model)
 };
 
 /// Builds the grid and runs one counted query, then repeats build + uncounted

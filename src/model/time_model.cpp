@@ -3,6 +3,7 @@
 #include "model/time_model.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -41,11 +42,12 @@ constexpr double kSteps[] = {1.25, 1.1, 1.03};
 }  // namespace
 
 std::array<double, kQueryTerms> query_terms(const TimeTerms& t) {
-  return {t.particles, t.occupied_cells, t.run_checks, t.list_checks, t.searches, t.rows, t.scanned, t.probes};
+  return {t.particles, t.occupied_cells, t.run_checks, t.list_checks, t.searches,
+          t.rows,      t.scanned,        t.probes,     t.contacts};
 }
 
 std::array<double, kBuildTerms> build_terms(const TimeTerms& t) {
-  return {t.particles, t.level_steps, t.sort_passes, t.bucket_passes, t.directory_words};
+  return {t.particles, t.level_steps, t.sort_passes, t.bucket_passes, t.directory_words, t.directory_slots};
 }
 
 PredictedSeconds predict_seconds(const TimeCoefficients& c, const TimeTerms& t) {
@@ -57,7 +59,7 @@ PredictedSeconds predict_seconds(const TimeCoefficients& c, const TimeTerms& t) 
   return out;
 }
 
-TimeTerms counted_time_terms(const Counters& c, std::uint64_t directory_words, const SortWork& sort) {
+TimeTerms counted_time_terms(const Counters& c, const BuildWork& b) {
   TimeTerms t;
   t.particles = static_cast<double>(c.particles());
   t.occupied_cells = static_cast<double>(c.occupied_cells);
@@ -67,9 +69,11 @@ TimeTerms counted_time_terms(const Counters& c, std::uint64_t directory_words, c
   t.rows = static_cast<double>(c.rows);
   t.scanned = static_cast<double>(c.scanned);
   t.probes = static_cast<double>(c.probes);
-  t.directory_words = static_cast<double>(directory_words);
-  t.sort_passes = sort.particle_passes;
-  t.bucket_passes = sort.bucket_passes;
+  t.contacts = static_cast<double>(c.contacts);
+  t.directory_words = static_cast<double>(b.directory_words);
+  t.directory_slots = static_cast<double>(b.directory_slots);
+  t.sort_passes = b.sort.particle_passes;
+  t.bucket_passes = b.sort.bucket_passes;
   for (int h = 0; h < c.levels; ++h) t.level_steps += double(h) * double(c.particles_per_level[h]);
   return t;
 }
@@ -106,6 +110,7 @@ TimeTerms expected_time_terms(const Distribution& dist, const ModelParams& p, co
       t.directory_words += std::floor(cells / kBitsPerWord) + 1;
       runs += (half_stencil - 1) / 3 * run_part(3 * mh) + run_part(mh);
     } else {
+      t.directory_slots += double(std::max<std::uint64_t>(16, std::bit_ceil(static_cast<std::uint64_t>(2 * nh))));
       t.probes += occupied * half_stencil;
       runs += half_stencil * run_part(mh);
     }
@@ -143,6 +148,14 @@ TimeTerms expected_time_terms(const Distribution& dist, const ModelParams& p, co
     }
   }
   t.list_checks = checks - t.run_checks;
+  // Pairs closer than r_i + r_j among independent centres: n^2 / (2 V) times
+  // v_d E[(r_i + r_j)^d], with V = n V_p / nu and the binomial expansion.
+  double overlap = 0, binom = 1;
+  for (int k = 0; k <= d; ++k) {
+    overlap += binom * dist.moment(k, 0.0, dist.r_max()) * dist.moment(d - k, 0.0, dist.r_max());
+    binom = binom * (d - k) / (k + 1);
+  }
+  t.contacts = 0.5 * n * p.nu / vp * unit_ball_volume(d) * overlap;
   return t;
 }
 

@@ -27,19 +27,21 @@ struct TimeTerms {
   double rows = 0;            // rows of cells walked by those boxes (two rank look-ups each)
   double scanned = 0;         // particles scanned where a box holds more cells than its level particles
   double probes = 0;          // cells looked up one at a time in a hashed (sparse) level's table
+  double contacts = 0;        // overlapping pairs found: a mispredicted branch in a run, a callback each
   // Build.
   double level_steps = 0;      // sum over particles of the level index (0-based): the level-of-insertion search
   double sort_passes = 0;      // radix passes over the particles inside their coarse buckets
   double bucket_passes = 0;    // radix passes times coarse buckets (a histogram each)
   double directory_words = 0;  // bitmap words (64 cells each) of the ranked levels: cleared and ranked
+  double directory_slots = 0;  // hash-table slots of the hashed levels: cleared and filled
 };
 
-inline constexpr int kQueryTerms = 8;
-inline constexpr int kBuildTerms = 5;
+inline constexpr int kQueryTerms = 9;
+inline constexpr int kBuildTerms = 6;
 inline constexpr std::array<std::string_view, kQueryTerms> kQueryTermNames = {
-    "particles", "occupied_cells", "run_checks", "list_checks", "searches", "rows", "scanned", "probes"};
+    "particles", "occupied_cells", "run_checks", "list_checks", "searches", "rows", "scanned", "probes", "contacts"};
 inline constexpr std::array<std::string_view, kBuildTerms> kBuildTermNames = {
-    "particles", "level_steps", "sort_passes", "bucket_passes", "directory_words"};
+    "particles", "level_steps", "sort_passes", "bucket_passes", "directory_words", "directory_slots"};
 std::array<double, kQueryTerms> query_terms(const TimeTerms& t);
 std::array<double, kBuildTerms> build_terms(const TimeTerms& t);
 
@@ -55,9 +57,19 @@ struct PredictedSeconds {
 };
 PredictedSeconds predict_seconds(const TimeCoefficients& c, const TimeTerms& t);
 
-/// The terms a counted query measured, with the build's from the grid
-/// (HGrid::directory_words(), HGrid::sort_work()).
-TimeTerms counted_time_terms(const Counters& c, std::uint64_t directory_words, const SortWork& sort);
+/// What a build did beyond its particles (HGrid::directory_words(),
+/// HGrid::directory_slots(), HGrid::sort_work()).
+struct BuildWork {
+  std::uint64_t directory_words = 0, directory_slots = 0;
+  SortWork sort;
+};
+template <class Grid>
+BuildWork build_work(const Grid& g) {
+  return {g.directory_words(), g.directory_slots(), g.sort_work()};
+}
+
+/// The terms a counted query and its grid's build measured.
+TimeTerms counted_time_terms(const Counters& c, const BuildWork& b);
 
 /// The expected terms for n particles with independent uniform centres in a
 /// periodic box (the paper's assumptions) and cell sizes s_1..s_L: occupied
@@ -65,7 +77,8 @@ TimeTerms counted_time_terms(const Counters& c, std::uint64_t directory_words, c
 /// split into runs and lists by the Poisson probability that a range holds
 /// more than 4 particles, rows from the box extent E[(2 + 2r/s_j)^(d-1)]
 /// (Eq. 16 with one axis fewer), and the scan where the expected box b(j,h)
-/// holds more cells than level j holds particles (as the grid decides per box).
+/// holds more cells than level j holds particles (as the grid decides per box);
+/// contacts from the overlap volume, n^2 v_d E[(r_i + r_j)^d] / (2 V).
 TimeTerms expected_time_terms(const Distribution& dist, const ModelParams& p, const std::vector<double>& sizes,
                               double n);
 
