@@ -37,7 +37,8 @@ set xlabel 'packing fraction {/Symbol n}'
 set ylabel 'build + query time (K = 0.2 sizes) / (time-optimal sizes)'
 set xrange [0.05:0.65]
 set yrange [*:*]
-set key top left box opaque
+set key below horizontal maxrows 3 box spacing 1.1
+set bmargin 8
 sel(p, w, v) = (strcol("placement") eq p && abs(column("omega") - w) < 1e-9) ? v : NaN
 omegas = "2 10 50 100"
 plot 1 with lines lc rgb 'black' dt 2 notitle, \
