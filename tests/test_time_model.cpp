@@ -105,6 +105,7 @@ std::vector<CalibrationSample> synthetic_samples(const TimeCoefficients& c, int 
     t.occupied_cells = n * (0.5 + 0.05 * (i % 7));
     t.run_checks = n * (1 + 3 * ((i * 5) % 11));
     t.list_checks = n * (2 + (i * 3) % 13);
+    t.runs = n * (0.5 + 0.3 * ((i * 11) % 7));
     t.searches = n * 0.1 * ((i * 7) % 9);
     t.rows = n * 0.7 * ((i * 2) % 17);
     t.scanned = n * 0.01 * (i % 4);
@@ -127,7 +128,7 @@ std::vector<CalibrationSample> synthetic_samples(const TimeCoefficients& c, int 
 
 TEST(TimeModel, FitRecoversKnownCoefficients) {
   TimeCoefficients c;
-  c.query = {20e-9, 5e-9, 2e-9, 3e-9, 15e-9, 4e-9, 6e-9, 10e-9, 7e-9};
+  c.query = {20e-9, 5e-9, 2e-9, 3e-9, 8e-9, 15e-9, 4e-9, 6e-9, 10e-9, 7e-9};
   c.build = {20e-9, 5e-9, 9e-9, 2e-6, 30e-9, 4e-9};
   const TimeModelFit f = fit_time_model(synthetic_samples(c, 3, 48), 3);
   for (int k = 0; k < kQueryTerms; ++k) EXPECT_NEAR(f.coef.query[k], c.query[k], kFitRelTol * c.query[k]) << k;
@@ -142,7 +143,7 @@ TEST(TimeModel, FitRecoversKnownCoefficients) {
 
 TEST(TimeModel, NonNegativeFitDropsANegativeCost) {
   TimeCoefficients c;
-  c.query = {20e-9, 5e-9, 2e-9, 3e-9, 15e-9, 4e-9, 6e-9, 10e-9, 7e-9};
+  c.query = {20e-9, 5e-9, 2e-9, 3e-9, 8e-9, 15e-9, 4e-9, 6e-9, 10e-9, 7e-9};
   c.build = {20e-9, 5e-9, 9e-9, 2e-6, 30e-9, 4e-9};
   auto samples = synthetic_samples(c, 2, 40);
   // A term the times do not depend on, with noise that would fit negative.
@@ -156,7 +157,7 @@ TEST(TimeModel, RecordRoundTripsAndOldRecordsLoad) {
   Calibration c;
   c.K = 0.8, c.c_cell = 1.6e-9, c.c_test = 2e-9, c.points = 30, c.preset = "test";
   TimeModelFit t;
-  t.coef.query = {1e-8, 2e-9, 3e-9, 4e-9, 5e-9, 6e-9, 7e-9, 8e-9, 9e-9};
+  t.coef.query = {1e-8, 2e-9, 3e-9, 4e-9, 5e-9, 6e-9, 7e-9, 8e-9, 9e-9, 1e-9};
   t.coef.build = {9e-9, 1e-9, 2e-9, 3e-6, 4e-9, 5e-9};
   t.query = {0.99, 0.05, 0.1, 30};
   t.holdout_total = {0.98, 0.07, 0.15, 18};
@@ -180,7 +181,7 @@ TEST(TimeModel, RecordRoundTripsAndOldRecordsLoad) {
 
 TEST(TimeModel, TimeOptimalSizesPredictNoMoreThanTheCountOptimum) {
   TimeCoefficients c;
-  c.query = {20e-9, 0, 2e-9, 3e-9, 20e-9, 4e-9, 6e-9, 10e-9, 7e-9};
+  c.query = {20e-9, 0, 2e-9, 3e-9, 8e-9, 20e-9, 4e-9, 6e-9, 10e-9, 7e-9};
   c.build = {20e-9, 5e-9, 9e-9, 2e-6, 30e-9, 4e-9};
   const PowerLaw dist(-3, 50);
   const ModelParams mp{3, 0.5, 0.2, Search::top_down};

@@ -65,7 +65,7 @@ std::vector<CalibrationScene> calibration_scenes(bool quick) {
       spec(3, R, P, 0, 10, 0.2, 50000 / k, 13),     spec(2, R, P, -3, 50, 0.4, 100000 / k, 14),
       spec(2, X, W, 0, 2, 0.5, 100000 / k, 15),     spec(3, R, W, -3, 2, 0.2, 200000 / k, 16),
       spec(2, R, P, 0, 10, 0.3, 50000 / k, 17),     spec(2, X, W, -3, 20, 0.6, 20000 / k, 18),
-      spec(2, R, W, -1, 100, 0.5, 200000 / k, 19),
+      spec(2, R, W, -1, 100, 0.5, 200000 / k, 19),    spec(3, R, P, -3, 2, 0.55, 100000 / k, 20),
   };
   std::vector<CalibrationScene> out;
   for (const auto& p : packings) {

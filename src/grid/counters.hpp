@@ -34,6 +34,9 @@ struct Counters {
   /// 4 particles) into one index list and tested without a branch; the
   /// others test contiguous runs of the sorted particles.
   std::uint64_t list_checks = 0;
+  /// Contiguous runs tested (a loop each: the rest of a particle's own
+  /// cell, a range of more than 4, a hashed level's cell in a box).
+  std::uint64_t runs = 0;
   std::vector<std::uint64_t> occupied_by_level;  // L
   std::vector<std::uint64_t> searches_by_level;  // L x L
   std::vector<std::uint64_t> rows_by_level;      // L x L

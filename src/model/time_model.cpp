@@ -23,17 +23,23 @@ constexpr double kBitsPerWord = 64;
 // one gathered into the candidate list (HGrid::kShortRange).
 constexpr int kShortRange = 4;
 
-/// Expected checks in long ranges, E[X 1(X > kShortRange)], for a range
-/// holding X ~ Poisson(mu) particles: mu P(Poisson(mu) >= kShortRange).
-double run_part(double mu) {
-  if (!(mu > 0)) return 0;
+/// P(Poisson(mu) >= k).
+double at_least(double mu, int k) {
+  if (!(mu > 0)) return k <= 0 ? 1.0 : 0.0;
   double term = std::exp(-mu), below = 0;
-  for (int i = 0; i < kShortRange; ++i) {
+  for (int i = 0; i < k; ++i) {
     below += term;
     term *= mu / (i + 1);
   }
-  return mu * std::max(0.0, 1.0 - below);
+  return std::max(0.0, 1.0 - below);
 }
+
+/// Expected checks in long ranges, E[X 1(X > kShortRange)], for a range
+/// holding X ~ Poisson(mu) particles: mu P(Poisson(mu) >= kShortRange).
+double run_part(double mu) { return mu * at_least(mu, kShortRange); }
+
+/// Probability that such a range is long (tested as a run).
+double run_prob(double mu) { return at_least(mu, kShortRange + 1); }
 
 // The coordinate search of time_optimal_sizes.
 constexpr int kExtraLevels = 3;             // L from 1 to L* + this
@@ -42,8 +48,8 @@ constexpr double kSteps[] = {1.25, 1.1, 1.03};
 }  // namespace
 
 std::array<double, kQueryTerms> query_terms(const TimeTerms& t) {
-  return {t.particles, t.occupied_cells, t.run_checks, t.list_checks, t.searches,
-          t.rows,      t.scanned,        t.probes,     t.contacts};
+  return {t.particles, t.occupied_cells, t.run_checks, t.list_checks, t.runs,
+          t.searches,  t.rows,           t.scanned,    t.probes,      t.contacts};
 }
 
 std::array<double, kBuildTerms> build_terms(const TimeTerms& t) {
@@ -65,6 +71,7 @@ TimeTerms counted_time_terms(const Counters& c, const BuildWork& b) {
   t.occupied_cells = static_cast<double>(c.occupied_cells);
   t.list_checks = static_cast<double>(c.list_checks);
   t.run_checks = static_cast<double>(c.narrow_phase_checks) - t.list_checks;
+  t.runs = static_cast<double>(c.runs);
   t.searches = static_cast<double>(c.searches);
   t.rows = static_cast<double>(c.rows);
   t.scanned = static_cast<double>(c.scanned);
@@ -105,16 +112,21 @@ TimeTerms expected_time_terms(const Distribution& dist, const ModelParams& p, co
     // average); on a ranked level the half stencil's rows of 3 cells
     // ((3^(d-1) - 1) / 2 of them) and the next cell of its own row, on a
     // hashed one the half stencil's cells one by one.
-    double runs = 0.5 * mh;
+    // The own cell's rest is a run when it is not empty: per particle
+    // 1 - (1 - e^-m) / m on average over a Poisson cell.
+    double run_checks = 0.5 * mh, runs = mh > 0 ? 1 + std::expm1(-mh) / mh : 0;
     if (ranked[h]) {
       t.directory_words += std::floor(cells / kBitsPerWord) + 1;
-      runs += (half_stencil - 1) / 3 * run_part(3 * mh) + run_part(mh);
+      run_checks += (half_stencil - 1) / 3 * run_part(3 * mh) + run_part(mh);
+      runs += (half_stencil - 1) / 3 * run_prob(3 * mh) + run_prob(mh);
     } else {
       t.directory_slots += double(std::max<std::uint64_t>(16, std::bit_ceil(static_cast<std::uint64_t>(2 * nh))));
       t.probes += occupied * half_stencil;
-      runs += half_stencil * run_part(mh);
+      run_checks += half_stencil * run_part(mh);
+      runs += half_stencil * run_prob(mh);
     }
-    t.run_checks += nh * runs;
+    t.run_checks += nh * run_checks;
+    t.runs += nh * runs;
   }
   for (int h = 0; h < L; ++h) {
     const double nh = n * m.P[h];
@@ -133,6 +145,7 @@ TimeTerms expected_time_terms(const Distribution& dist, const ModelParams& p, co
       if (!ranked[j]) {  // a hashed level's cells are tested as ranges, one by one: runs
         t.probes += nh * box;
         t.run_checks += pair_checks;
+        t.runs += nh * box * at_least(nj / (n * vp / (p.nu * std::pow(s[j], d))), 1);
         continue;
       }
       // n int over level h of (2 + 2r/s_j)^(d-1) f(r) dr, expanded in moments.
@@ -144,7 +157,10 @@ TimeTerms expected_time_terms(const Distribution& dist, const ModelParams& p, co
       t.rows += n * rows;
       // A row of the box holds box / rows cells, each m_j particles on average.
       const double per_row = rows > 0 ? box * m.P[h] / rows * (nj / (n * vp / (p.nu * std::pow(s[j], d)))) : 0;
-      if (per_row > 0) t.run_checks += pair_checks * run_part(per_row) / per_row;
+      if (per_row > 0) {
+        t.run_checks += pair_checks * run_part(per_row) / per_row;
+        t.runs += n * rows * run_prob(per_row);
+      }
     }
   }
   t.list_checks = checks - t.run_checks;

@@ -23,6 +23,7 @@ struct TimeTerms {
   double occupied_cells = 0;  // non-empty cells: one half stencil each (13 row runs in 3D)
   double run_checks = 0;      // overlap tests along contiguous runs of sorted particles (own cell, ranges > 4)
   double list_checks = 0;     // overlap tests of candidates gathered from short ranges (<= 4) into a list
+  double runs = 0;            // contiguous runs tested: a loop each, its exit a mispredicted branch
   double searches = 0;        // cross-level searches: one box per particle and level searched
   double rows = 0;            // rows of cells walked by those boxes (two rank look-ups each)
   double scanned = 0;         // particles scanned where a box holds more cells than its level particles
@@ -36,10 +37,10 @@ struct TimeTerms {
   double directory_slots = 0;  // hash-table slots of the hashed levels: cleared and filled
 };
 
-inline constexpr int kQueryTerms = 9;
+inline constexpr int kQueryTerms = 10;
 inline constexpr int kBuildTerms = 6;
 inline constexpr std::array<std::string_view, kQueryTerms> kQueryTermNames = {
-    "particles", "occupied_cells", "run_checks", "list_checks", "searches", "rows", "scanned", "probes", "contacts"};
+    "particles", "occupied_cells", "run_checks", "list_checks", "runs", "searches", "rows", "scanned", "probes", "contacts"};
 inline constexpr std::array<std::string_view, kBuildTerms> kBuildTermNames = {
     "particles", "level_steps", "sort_passes", "bucket_passes", "directory_words", "directory_slots"};
 std::array<double, kQueryTerms> query_terms(const TimeTerms& t);

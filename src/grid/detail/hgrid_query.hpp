@@ -128,6 +128,7 @@ void HGrid<D, B>::cross_level(std::uint32_t p, int h, int j, F& f, Counters& out
   plain = plain && inside;
   auto range = [&](std::uint32_t qb, std::uint32_t qe) {
     checked += qe - qb;
+    if constexpr (Count::enabled) out.runs += qe > qb;
     if (plain) {
       for (std::uint32_t q = qb; q < qe; ++q) test<Count, Boundary::walls>(p, q, f, out);
     } else {
@@ -331,6 +332,7 @@ Counters HGrid<D, B>::query(F&& f_user) const {
           out.cell_accesses += acc;
           out.narrow_phase_checks += chk;
           out.list_checks += n_cand;
+          out.runs += static_cast<std::uint64_t>(n_nb) + (end - p > 1);
           out.accesses_by_level[h * L + h] += acc;
           out.checks_by_level[h * L + h] += chk;
         }
