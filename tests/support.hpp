@@ -9,6 +9,7 @@
 
 #include "grid/brute_force.hpp"
 #include "grid/hgrid.hpp"
+#include "packing/packing.hpp"
 
 namespace hgrid::test {
 
@@ -86,6 +87,19 @@ template <int D, Boundary B, Search S, class Count = Uncounted>
 std::pair<std::vector<Pair>, Counters> grid_pairs(const Scene<D>& s, const std::vector<double>& sizes) {
   const HGrid<D, B> grid(std::span<const Sphere<D>>(s.spheres), s.box, GridParams{sizes, S});
   return query_pairs<S, Count>(grid);
+}
+
+/// A scene as a Packing (3D) with boundary b.
+inline Packing packing_from(const Scene<3>& s, Boundary b) {
+  Packing p;
+  p.d = 3;
+  p.boundary = b;
+  for (int a = 0; a < 3; ++a) p.box[a] = s.box[a];
+  for (const auto& q : s.spheres) {
+    for (int a = 0; a < 3; ++a) p.positions.push_back(q.x[a]);
+    p.radii.push_back(q.r);
+  }
+  return p;
 }
 
 }  // namespace hgrid::test

@@ -2,11 +2,9 @@
 // `hgrid modelfigs` (the data behind the paper's Figs. 2-10).
 #include <filesystem>
 #include <cmath>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "cli/common.hpp"
 #include "io/atomic_file.hpp"
@@ -19,6 +17,7 @@
 #include "grid/error.hpp"
 #include "packing/packing.hpp"
 #include "io/packing_file.hpp"
+#include "io/particle_file.hpp"
 
 namespace hgrid::cli {
 
@@ -32,33 +31,8 @@ struct ModelOptions {
   bool json = false, excluded_sizes = false;
 };
 
-/// Radii from an HDF5 packing (.h5/.hdf5) or a text file: the last number
-/// of each non-empty line not starting with '#' (a plain list, or "x y z r").
-std::vector<double> read_radii(const std::string& path) {
-  const auto ends = [&](const std::string& suf) {
-    return path.size() >= suf.size() && path.compare(path.size() - suf.size(), suf.size(), suf) == 0;
-  };
-  if (ends(".h5") || ends(".hdf5")) return read_packing(path, Isolation::child_process).radii;
-  std::ifstream in(path);
-  if (!in) throw InputError("radii", "cannot open '" + path + "'");
-  std::vector<double> out;
-  std::string line;
-  for (int no = 1; std::getline(in, line); ++no) {
-    const auto first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
-    std::istringstream ss(line);
-    double v = 0, last = 0;
-    int count = 0;
-    while (ss >> v) last = v, ++count;
-    if (count == 0 || !ss.eof())
-      throw InputError("radii", path + ":" + std::to_string(no) + ": expected numbers, the radius last");
-    out.push_back(last);
-  }
-  return out;
-}
-
 std::unique_ptr<Distribution> make_distribution(const ModelOptions& o) {
-  if (!o.radii_file.empty()) return std::make_unique<Empirical>(read_radii(o.radii_file));
+  if (!o.radii_file.empty()) return std::make_unique<Empirical>(read_particles(o.radii_file, Isolation::child_process).radii);
   if (o.dist == "powerlaw") return std::make_unique<PowerLaw>(o.alpha, o.omega);
   if (o.dist == "lognormal") return std::make_unique<LogNormal>(LogNormal::centred(o.sigma, o.omega));
   throw InputError("dist", "must be powerlaw or lognormal (got '" + o.dist + "')");
@@ -146,7 +120,7 @@ void register_model_commands(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--sigma", o->sigma, "log-normal: standard deviation of ln r, > 0")->capture_default_str();
   sub->add_option("--radii", o->radii_file,
-                  "use the radii of FILE instead (HDF5 packing, or text: last number per line)");
+                  "use the radii of FILE instead (any particle file: docs/PARTICLE_FILES.md)");
   sub->add_option("--placement", o->placement,
                   "random (the paper's model) | excluded (hard-sphere packing: Percus-Yevick pair structure, 3D)")
       ->capture_default_str();
