@@ -89,14 +89,15 @@ std::pair<std::vector<Pair>, Counters> grid_pairs(const Scene<D>& s, const std::
   return query_pairs<S, Count>(grid);
 }
 
-/// A scene as a Packing (3D) with boundary b.
-inline Packing packing_from(const Scene<3>& s, Boundary b) {
+/// A scene as a Packing with boundary b.
+template <int D>
+Packing packing_from(const Scene<D>& s, Boundary b) {
   Packing p;
-  p.d = 3;
+  p.d = D;
   p.boundary = b;
-  for (int a = 0; a < 3; ++a) p.box[a] = s.box[a];
+  for (int a = 0; a < D; ++a) p.box[a] = s.box[a];
   for (const auto& q : s.spheres) {
-    for (int a = 0; a < 3; ++a) p.positions.push_back(q.x[a]);
+    for (int a = 0; a < D; ++a) p.positions.push_back(q.x[a]);
     p.radii.push_back(q.r);
   }
   return p;

@@ -13,6 +13,7 @@ void register_generate_commands(CLI::App& app);  // generate, info (cmd_generate
 void register_run_commands(CLI::App& app);       // run           (cmd_run.cpp)
 void register_export_commands(CLI::App& app);    // export        (cmd_export.cpp)
 void register_calibrate_commands(CLI::App& app);  // calibrate   (cmd_calibrate.cpp)
+void register_recommend_commands(CLI::App& app);  // recommend   (cmd_recommend.cpp)
 
 /// A --K option's text: a number >= 0, or "auto" (the stored calibration).
 inline constexpr const char* kKHelp =
