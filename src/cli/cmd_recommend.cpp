@@ -10,6 +10,7 @@
 #include "cli/common.hpp"
 #include "experiment/k_choice.hpp"
 #include "experiment/recommend.hpp"
+#include "experiment/recommend_json.hpp"
 #include "grid/error.hpp"
 #include "io/particle_file.hpp"
 #include "io/peer_settings.hpp"
@@ -97,35 +98,15 @@ void print_text(const RecommendOptions& o, const ParticleSet& s, const Inputs& i
 
 void print_json(const RecommendOptions& o, const ParticleSet& s, const Inputs& in, const KChoice& k,
                 const Recommendation& r, Search search) {
-  nlohmann::json j;
+  nlohmann::json j = nlohmann::json::parse(recommendation_json(r, k, search, o.skin));
   j["file"] = o.file;
   j["format"] = to_string(s.format);
   j["n"] = s.size();
   j["d"] = in.d;
-  j["r_min"] = r.r_min;
-  j["r_max"] = r.r_max;
-  j["omega"] = r.r_max / r.r_min;
   j["nu"] = in.nu;
   j["nu_source"] = in.nu_from_box ? "box" : "given";
   j["box"] = s.box ? nlohmann::json(std::vector<double>(s.box->begin(), s.box->begin() + in.d)) : nlohmann::json();
   j["boundary"] = boundary_description(s);
-  j["K"] = k.K;
-  j["K_source"] = to_string(k.source);
-  j["calibration_path"] = k.calibration_path;
-  j["search"] = to_string(search);
-  j["levels"] = r.levels();
-  j["sizes"] = r.sizes;
-  j["sizes_pasted"] = rounded_up_sizes(r.sizes);
-  j["fraction_per_level"] = r.model.P;
-  j["particles_per_cell"] = r.model.m;
-  j["T_over_N"] = r.model.T_over_N;
-  j["T_cd_over_N"] = r.model.T_cd_over_N;
-  j["T_ca_over_N"] = r.model.T_ca_over_N;
-  j["linked_cell_size"] = r.linked_cell_size;
-  j["linked_cell_T_over_N"] = r.linked_cell.T_over_N;
-  j["speedup"] = r.speedup();
-  j["lammps"] = lammps_settings(r.sizes, o.skin);
-  j["mercurydpm"] = mercurydpm_settings(r.sizes, search);
   std::cout << j.dump(2) << "\n";
 }
 
