@@ -94,6 +94,9 @@ TEST_F(ParticleFiles, PlainLayoutsAndCommentedHeaders) {
   const ParticleSet hashed = parse_particles("# id x y z d\n1 1 2 3 0.5\n", "hashed.txt");
   EXPECT_EQ(hashed.radii, std::vector<double>{0.25});
   EXPECT_EQ(hashed.positions, (std::vector<double>{1, 2, 3}));
+  const ParticleSet prose = parse_particles("# d is the diameter\n1 2 0.5\n", "prose.txt");  // not a header
+  EXPECT_EQ(prose.radii, std::vector<double>{0.5});
+  EXPECT_EQ(prose.d, 2);
 }
 
 TEST_F(ParticleFiles, LammpsDataFilesAsExportWritesThemAndByHand) {

@@ -59,7 +59,7 @@ std::vector<std::string_view> cells_of(std::string_view line, char sep) {
 }
 
 /// "# format x_y_z_r" (Yade's export) or "# x y z r": the names, if the
-/// comment reads as a header naming a size column.
+/// comment reads as a header.
 std::optional<std::vector<std::string>> commented_header(std::string_view rest) {
   auto toks = split_ws(rest);
   std::vector<std::string> names;
@@ -72,7 +72,10 @@ std::optional<std::vector<std::string>> commented_header(std::string_view rest) 
   double v;
   for (const auto& n : names)
     if (n.empty() || to_number(n, v)) return std::nullopt;
-  if (names.empty() || map_columns(names).size < 0) return std::nullopt;
+  // A comment names the columns only if it names a size and x and y: "# d is
+  // the diameter" above "x y r" lines is prose, not a header.
+  const Columns c = map_columns(names);
+  if (c.size < 0 || c.dims() < 2) return std::nullopt;
   return names;
 }
 
