@@ -7,14 +7,8 @@
 # (default: N = 10^5; paper: 10^6; smoke: 3*10^4)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scale=${1:-default}
-hgrid=${HGRID:-build/hgrid}
-case "$scale" in smoke) n=30000 ;; paper) n=1000000 ;; *) n=100000 ;; esac
-suffix=$([ "$scale" = default ] && echo "" || echo "-$scale")
+source plots/lib/fig11_packing.sh "${1:-default}"
 csv="results/slice-by-level$suffix.csv"
-mkdir -p results paper_figs results/packings
-packing=$("$hgrid" generate --n "$n" --nu 0.6 --omega 100 --alpha -3 --placement excluded --seed 1 \
-          --cache results/packings --quiet | tail -1)
 xyz="results/.slice$suffix.tmp.$$.xyz"
 trap 'rm -f "$xyz" "$csv.tmp.$$"' EXIT
 "$hgrid" export "$packing" --xyz "$xyz" --K 0.2 > /dev/null
@@ -29,10 +23,4 @@ levels=$("$hgrid" recommend "$packing" --K 0.2 --json | awk -F: '/"levels"/ {gsu
        NR > 2 {dz = $4 - h; if (dz * dz < $5 * $5) printf "%.9g,%.9g,%.9g,%d\n", $2, $3, sqrt($5 * $5 - dz * dz), $6}' "$xyz"
 } > "$csv.tmp.$$"
 mv -f "$csv.tmp.$$" "$csv"
-for fmt in png pdf; do
-  out="paper_figs/slice-by-level$suffix.$fmt" t="paper_figs/.slice-by-level$suffix.tmp.$fmt"
-  gnuplot -e "in='$csv'; out='$t'; fmt='$fmt'; n='$n'; levels=$levels; box=$box" plots/slice_by_level.gp
-  if [ "$fmt" = pdf ]; then plots/lib/pdf_fixdate.sh "$t"; fi
-  mv -f "$t" "$out"
-done
-echo "wrote $csv and paper_figs/slice-by-level$suffix.png|pdf" >&2
+draw slice-by-level plots/slice_by_level.gp "$csv" "levels=$levels; box=$box"
