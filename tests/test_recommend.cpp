@@ -140,6 +140,28 @@ TEST_F(Recommend, NuAndDFromOptionsOrAClearError) {
   EXPECT_NE(text.out.find("setHGridDistribution(USER);"), std::string::npos);
 }
 
+/// `hgrid model --radii` takes nu and d from the file (no silent 0.7) and
+/// reads every format.
+TEST_F(Recommend, ModelRadiiTakesNuAndDFromTheFile) {
+  std::ofstream(path("p.csv")) << "# box 10 10\nx,y,r\n1,1,0.5\n5,5,1\n3,7,2\n";
+  Result r = hgrid_run("model --radii " + path("p.csv") + " --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["params"]["d"], 2);
+  EXPECT_EQ(j["params"]["nu_source"], "box");
+  EXPECT_NEAR(j["params"]["nu"].get<double>(), M_PI * (0.25 + 1 + 4) / 100, 1e-15);
+  r = hgrid_run("model --radii " + path("p.csv") + " --nu 0.3 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["params"]["nu"].get<double>(), 0.3);
+  std::ofstream(path("r.txt")) << "0.5\n1\n2\n";
+  r = hgrid_run("model --radii " + path("r.txt"));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("nu: "), std::string::npos) << r.err;
+  r = hgrid_run("model --radii " + path("r.txt") + " --nu 0.6 --json");  // the README's line: d defaults to 3
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["params"]["d"], 3);
+}
+
 TEST_F(Recommend, EveryJsonKeyIsDocumentedInHelp) {
   std::ofstream(path("r.csv")) << "# box 10 10\nx,y,r\n1,1,0.5\n5,5,1\n";
   const auto j = recommend_json(path("r.csv"));

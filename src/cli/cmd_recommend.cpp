@@ -35,34 +35,6 @@ constexpr const char* kJsonKeys =
     "T_ca_over_N (cell accesses), linked_cell_size (2 r_max), linked_cell_T_over_N, speedup "
     "(linked_cell_T_over_N / T_over_N), lammps (input lines), mercurydpm (code lines). T = tests + K accesses.";
 
-struct Inputs {
-  int d = 3;
-  double nu = 0;
-  bool nu_from_box = false;
-};
-
-Inputs resolve_inputs(const RecommendOptions& o, const ParticleSet& s) {
-  Inputs in;
-  if (o.d) {
-    if (*o.d != 2 && *o.d != 3) throw InputError("d", "must be 2 or 3 (got " + std::to_string(*o.d) + ")");
-    in.d = *o.d;
-  } else if (s.d == 2 || s.d == 3) {
-    in.d = s.d;
-  } else {
-    throw InputError("d", o.file + " holds radii only: give --d 2 or --d 3");
-  }
-  if (o.nu) {
-    if (!(std::isfinite(*o.nu) && *o.nu > 0)) throw InputError("nu", "must be a finite number > 0 (got " + format_number(*o.nu) + ")");
-    in.nu = *o.nu;
-  } else if (s.box && s.d == in.d) {
-    in.nu = s.packing_fraction();
-    in.nu_from_box = true;
-  } else {
-    throw InputError("nu", o.file + " has no box: give --nu, the packing fraction of your system (e.g. --nu 0.6)");
-  }
-  return in;
-}
-
 std::string k_text(const KChoice& k) {
   switch (k.source) {
     case KSource::given: return "given";
@@ -72,7 +44,7 @@ std::string k_text(const KChoice& k) {
   return "";
 }
 
-void print_text(const RecommendOptions& o, const ParticleSet& s, const Inputs& in, const KChoice& k,
+void print_text(const RecommendOptions& o, const ParticleSet& s, const FileInputs& in, const KChoice& k,
                 const Recommendation& r, Search search) {
   std::printf("%s: %zu particles (%s, %dD), r_min = %g, r_max = %g (omega = %g)\n", o.file.c_str(), s.size(),
               to_string(s.format), in.d, r.r_min, r.r_max, r.r_max / r.r_min);
@@ -96,7 +68,7 @@ void print_text(const RecommendOptions& o, const ParticleSet& s, const Inputs& i
   for (const auto& line : mercurydpm_settings(r.sizes, search)) std::printf("  %s\n", line.c_str());
 }
 
-void print_json(const RecommendOptions& o, const ParticleSet& s, const Inputs& in, const KChoice& k,
+void print_json(const RecommendOptions& o, const ParticleSet& s, const FileInputs& in, const KChoice& k,
                 const Recommendation& r, Search search) {
   nlohmann::json j = nlohmann::json::parse(recommendation_json(r, k, search, o.skin));
   j["file"] = o.file;
@@ -114,7 +86,7 @@ void run_recommend(const RecommendOptions& o) {
   if (!(std::isfinite(o.skin) && o.skin >= 0)) throw InputError("skin", "must be a finite number >= 0");
   const Search search = parse_search(o.search);
   const ParticleSet s = read_particles(o.file, Isolation::child_process);
-  const Inputs in = resolve_inputs(o, s);
+  const FileInputs in = file_inputs(s, o.file, o.d, o.nu);
   const KChoice k = choose_K(o.K);
   const Recommendation r = recommend_cell_sizes(s.radii, ModelParams{in.d, in.nu, k.K, search});
   if (o.json) print_json(o, s, in, k, r, search);
@@ -122,6 +94,28 @@ void run_recommend(const RecommendOptions& o) {
 }
 
 }  // namespace
+
+FileInputs file_inputs(const ParticleSet& s, const std::string& file, std::optional<int> d, std::optional<double> nu) {
+  FileInputs in;
+  if (d) {
+    if (*d != 2 && *d != 3) throw InputError("d", "must be 2 or 3 (got " + std::to_string(*d) + ")");
+    in.d = *d;
+  } else if (s.d == 2 || s.d == 3) {
+    in.d = s.d;
+  } else {
+    throw InputError("d", file + " holds radii only: give --d 2 or --d 3");
+  }
+  if (nu) {
+    if (!(std::isfinite(*nu) && *nu > 0)) throw InputError("nu", "must be a finite number > 0 (got " + format_number(*nu) + ")");
+    in.nu = *nu;
+  } else if (s.box && s.d == in.d) {
+    in.nu = s.packing_fraction();
+    in.nu_from_box = true;
+  } else {
+    throw InputError("nu", file + " has no box: give --nu, the packing fraction of your system (e.g. --nu 0.6)");
+  }
+  return in;
+}
 
 void register_recommend_commands(CLI::App& app) {
   auto o = std::make_shared<RecommendOptions>();

@@ -2,7 +2,10 @@
 #pragma once
 #include <CLI/CLI.hpp>
 
+#include <optional>
 #include <string>
+
+#include "io/particle_file.hpp"
 
 namespace hgrid::cli {
 
@@ -21,6 +24,16 @@ inline constexpr const char* kKHelp =
 
 /// Exit status for bad input (file, parameter): one line on stderr, status 2.
 inline constexpr int kBadInput = 2;
+
+/// d and nu for the particles `s` read from `file`: the options when given,
+/// else the file's (its columns, its box); an InputError naming d or nu, and
+/// the option to give, when neither has it (cmd_recommend.cpp).
+struct FileInputs {
+  int d = 3;
+  double nu = 0;
+  bool nu_from_box = false;
+};
+FileInputs file_inputs(const ParticleSet& s, const std::string& file, std::optional<int> d, std::optional<double> nu);
 
 /// Parse "a,b,c" into doubles; throws hgrid::InputError naming `field`.
 std::vector<double> parse_list(const std::string& text, const std::string& field);
