@@ -44,7 +44,7 @@ FUZZ_SECONDS ?= 60
 fuzz:
 	CXX=clang++ CC=clang cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHGRID_FUZZ=ON \
 	  -DHGRID_BUILD_TESTS=OFF -DHGRID_BUILD_BENCH=OFF -DHGRID_BUILD_CLI=OFF
-	cmake --build build-fuzz -j $(JOBS) --target fuzz_csv fuzz_hdf5 fuzz_scene fuzz_journal
+	cmake --build build-fuzz -j $(JOBS) --target fuzz_csv fuzz_particles fuzz_hdf5 fuzz_scene fuzz_journal
 	bash tests/fuzz/run.sh build-fuzz $(FUZZ_SECONDS)
 
 # Figures 2-10 (cost model), then 11-12 (scenes on generated packings).

@@ -7,7 +7,8 @@
 set -euo pipefail
 required=("$@"
       build-essential cmake libgsl-dev libhdf5-dev libbenchmark-dev libgtest-dev
-      libcli11-dev libtomlplusplus-dev nlohmann-json3-dev gnuplot-nox)
+      libcli11-dev libtomlplusplus-dev nlohmann-json3-dev gnuplot-nox
+      pybind11-dev python3-dev python3-numpy python3-pytest)
 optional=(jq          # plots/calibration.sh (make calibrate-figure) reads the tool's JSON
           lammps      # bench/peers at run time
           libcgal-dev)  # bench/peers at build time

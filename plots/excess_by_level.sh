@@ -6,14 +6,8 @@
 # Usage: plots/excess_by_level.sh [SCALE]   (default: N = 10^5; paper: 10^6; smoke: 3*10^4, the smallest box that holds 4 r_max)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scale=${1:-default}
-hgrid=${HGRID:-build/hgrid}
-case "$scale" in smoke) n=30000 ;; paper) n=1000000 ;; *) n=100000 ;; esac
-suffix=$([ "$scale" = default ] && echo "" || echo "-$scale")
+source plots/lib/fig11_packing.sh "${1:-default}"
 csv="results/excess-by-level$suffix.csv"
-mkdir -p results paper_figs results/packings
-packing=$("$hgrid" generate --n "$n" --nu 0.6 --omega 100 --alpha -3 --placement excluded --seed 1 \
-          --cache results/packings --quiet | tail -1)
 tmp="$csv.tmp.$$"
 {
   echo "# excess by level: alpha=-3 omega=100 nu=0.6 n=$n seed=1 placement=excluded; checks per particle (all levels searched)"
@@ -22,10 +16,4 @@ tmp="$csv.tmp.$$"
     awk -v n="$n" '$1 ~ /^[0-9]+$/ && NF == 7 {printf "%d,%.6g,%d,%.6g,%.6g,%.6g\n", $1, $2, $3, $5 / n, $6 / n, $7 / n}'
 } > "$tmp"
 mv -f "$tmp" "$csv"
-for fmt in png pdf; do
-  out="paper_figs/excess-by-level$suffix.$fmt" t="paper_figs/.excess-by-level$suffix.tmp.$fmt"
-  gnuplot -e "in='$csv'; out='$t'; fmt='$fmt'; n='$n'" plots/excess_by_level.gp
-  if [ "$fmt" = pdf ]; then plots/lib/pdf_fixdate.sh "$t"; fi
-  mv -f "$t" "$out"
-done
-echo "wrote $csv and paper_figs/excess-by-level$suffix.png|pdf" >&2
+draw excess-by-level plots/excess_by_level.gp "$csv"

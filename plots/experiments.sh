@@ -35,3 +35,4 @@ plot plots/fig11.gp "results/fig11$suffix.csv" fig11-measured-vs-model-nu "$(val
 plot plots/fig12.gp "results/fig12$suffix.csv" fig12-measured-vs-model-n "$(values "results/fig12$suffix.csv" alpha | tr ' ' '\n' | sort -gr | tr '\n' ' ')"
 bash plots/model_errors.sh "$scale"
 bash plots/excess_by_level.sh "$scale"
+bash plots/slice_by_level.sh "$scale"

@@ -9,6 +9,7 @@
 
 #include "grid/brute_force.hpp"
 #include "grid/hgrid.hpp"
+#include "packing/packing.hpp"
 
 namespace hgrid::test {
 
@@ -86,6 +87,20 @@ template <int D, Boundary B, Search S, class Count = Uncounted>
 std::pair<std::vector<Pair>, Counters> grid_pairs(const Scene<D>& s, const std::vector<double>& sizes) {
   const HGrid<D, B> grid(std::span<const Sphere<D>>(s.spheres), s.box, GridParams{sizes, S});
   return query_pairs<S, Count>(grid);
+}
+
+/// A scene as a Packing with boundary b.
+template <int D>
+Packing packing_from(const Scene<D>& s, Boundary b) {
+  Packing p;
+  p.d = D;
+  p.boundary = b;
+  for (int a = 0; a < D; ++a) p.box[a] = s.box[a];
+  for (const auto& q : s.spheres) {
+    for (int a = 0; a < D; ++a) p.positions.push_back(q.x[a]);
+    p.radii.push_back(q.r);
+  }
+  return p;
 }
 
 }  // namespace hgrid::test

@@ -18,19 +18,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-template <int D>
-Packing to_packing(const Scene<D>& s, Boundary b) {
-  Packing p;
-  p.d = D;
-  p.boundary = b;
-  for (int a = 0; a < D; ++a) p.box[a] = s.box[a];
-  for (const auto& q : s.spheres) {
-    for (int a = 0; a < D; ++a) p.positions.push_back(q.x[a]);
-    p.radii.push_back(q.r);
-  }
-  return p;
-}
-
 std::vector<std::string> lines(const std::string& text) {
   std::vector<std::string> out;
   std::stringstream ss(text);
@@ -84,7 +71,7 @@ TEST(LammpsExport, TwoDimensionalAndWalls) {
 
 TEST(LammpsExport, CollectionsAndBadInput) {
   const auto s = random_scene<3>(50, 0.2, -3, 10, Boundary::periodic, 3);
-  const Packing p = to_packing(s, Boundary::periodic);
+  const Packing p = packing_from(s, Boundary::periodic);
   double rmax = 0;
   for (double r : p.radii) rmax = std::max(rmax, r);
   const auto c = geometric_collections(p, 3, 2.0);
@@ -124,7 +111,7 @@ void check_with_lammps(double nu, std::uint64_t seed) {
   const auto lmp = find_lammps();
   if (!lmp) GTEST_SKIP() << "lmp not on PATH (apt-get install lammps)";
   const auto s = random_scene<D>(300, nu, -3, 4, B, seed);
-  const Packing p = to_packing(s, B);
+  const Packing p = packing_from(s, B);
   const fs::path dir = fs::temp_directory_path() / ("hgridlab_lmp_" + std::to_string(::getpid()) + "_" +
                                                     std::to_string(D) + to_string(B));
   LammpsScript sc;

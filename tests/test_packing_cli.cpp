@@ -18,18 +18,6 @@
 namespace hgrid::test {
 namespace {
 
-Packing packing_from(const Scene<3>& s, Boundary b) {
-  Packing p;
-  p.d = 3;
-  p.boundary = b;
-  for (int a = 0; a < 3; ++a) p.box[a] = s.box[a];
-  for (const auto& q : s.spheres) {
-    for (int a = 0; a < 3; ++a) p.positions.push_back(q.x[a]);
-    p.radii.push_back(q.r);
-  }
-  return p;
-}
-
 using PackingFiles = TempDir;
 
 TEST_F(PackingFiles, Hdf5RoundTrip) {

@@ -1,5 +1,6 @@
-// hgrid export --lammps DIR: a packing (a file, or generation options with the
-// packing cache) as a LAMMPS data file and the two timing scripts.
+// hgrid export: a packing (a file, or generation options with the packing
+// cache) as a LAMMPS data file and the two timing scripts (--lammps DIR), and
+// as files for viewers with each particle's level and cell (--xyz, --vtk).
 #include <cmath>
 #include <algorithm>
 #include <iostream>
@@ -10,22 +11,34 @@
 #include "packing/generate.hpp"
 #include "io/lammps_export.hpp"
 #include "io/packing_file.hpp"
+#include "io/peer_settings.hpp"
+#include "io/viewer_files.hpp"
+#include "experiment/k_choice.hpp"
 #include "experiment/packing_cache.hpp"
+#include "experiment/recommend.hpp"
+#include "packing/grid_placement.hpp"
 
 namespace hgrid::cli {
 namespace {
 
 struct ExportOptions {
   std::string file, lammps, cache_dir = "results/packings", boundary = "periodic", placement = "excluded";
-  std::string collections;
+  std::string collections, xyz, vtk, sizes, K;
   int classes = 4;
   double smallest = 0;  // 0: 2 r_min
   PackingSpec spec;
   int builds = 10;
 };
 
+/// The sizes `hgrid recommend` gives for p's radii and packing fraction.
+std::vector<double> recommended_sizes(const Packing& p, const std::string& K) {
+  const ModelParams mp{p.d, p.packing_fraction(), choose_K(K).K, Search::top_down};
+  return recommend_cell_sizes(p.radii, mp).sizes;
+}
+
 void run_export(ExportOptions o) {
-  if (o.lammps.empty()) throw InputError("lammps", "give --lammps DIR");
+  if (o.lammps.empty() && o.xyz.empty() && o.vtk.empty())
+    throw InputError("out", "give --lammps DIR, --xyz FILE or --vtk FILE");
   Packing p;
   if (!o.file.empty()) {
     if (o.spec.n != 0) throw InputError("n", "give either FILE or generation options (--n ...), not both");
@@ -36,9 +49,12 @@ void run_export(ExportOptions o) {
     o.spec.placement = parse_placement(o.placement);
     p = cached_packing(o.spec, o.cache_dir);
   }
+  // Everything is computed and checked before the first file is written.
   LammpsScript s;
   s.builds = o.builds;
-  if (!o.collections.empty()) {
+  if (o.collections == "model") {
+    s.collections = rounded_up_sizes(recommended_sizes(p, o.K));
+  } else if (!o.collections.empty()) {
     s.collections = parse_list(o.collections, "collections");
   } else {
     double rmin = p.radii.empty() ? 1.0 : p.radii[0];
@@ -47,19 +63,34 @@ void run_export(ExportOptions o) {
       throw InputError("smallest", "must be a finite number > 0, or 0 for 2 r_min (got " + format_number(o.smallest) + ")");
     s.collections = geometric_collections(p, o.classes, o.smallest > 0 ? o.smallest : 2 * rmin);
   }
-  export_lammps(o.lammps, p, s);
-  std::cout << o.lammps << "/data.lmp\n" << o.lammps << "/in.multi.lmp\n" << o.lammps << "/in.bin.lmp\n";
+  if (!o.lammps.empty()) lammps_input(p, s);  // validates the classes
+  GridPlacement g;
+  if (!o.xyz.empty() || !o.vtk.empty()) {
+    const std::vector<double> sizes = o.sizes.empty() ? recommended_sizes(p, o.K) : parse_list(o.sizes, "sizes");
+    g = place_in_grid(p, GridParams{sizes, Search::top_down});
+  }
+  if (!o.xyz.empty()) write_extended_xyz(o.xyz, p, g), std::cout << o.xyz << "\n";
+  if (!o.vtk.empty()) write_legacy_vtk(o.vtk, p, g), std::cout << o.vtk << "\n";
+  if (!o.lammps.empty()) {
+    export_lammps(o.lammps, p, s);
+    std::cout << o.lammps << "/data.lmp\n" << o.lammps << "/in.multi.lmp\n" << o.lammps << "/in.bin.lmp\n";
+  }
 }
 
 }  // namespace
 
 void register_export_commands(CLI::App& app) {
   auto o = std::make_shared<ExportOptions>();
-  auto* sub = app.add_subcommand("export", "export a packing for another code (LAMMPS data file and scripts)");
-  sub->add_option("FILE", o->file, "packing file (.h5 or .csv); or give generation options");
-  sub->add_option("--lammps", o->lammps, "output directory: data.lmp, in.multi.lmp, in.bin.lmp")->required();
+  auto* sub = app.add_subcommand("export", "export a packing for another code (LAMMPS) or a viewer (OVITO, ParaView)");
+  sub->add_option("FILE", o->file, "packing file (any format with centres and a box); or give generation options");
+  sub->add_option("--lammps", o->lammps, "output directory: data.lmp, in.multi.lmp, in.bin.lmp");
+  sub->add_option("--xyz", o->xyz, "extended XYZ file (OVITO): radius, level of insertion, cell per particle");
+  sub->add_option("--vtk", o->vtk, "legacy VTK file (ParaView): radius, level of insertion, cell per particle");
+  sub->add_option("--sizes", o->sizes, "--xyz/--vtk: cell sizes s1,...,sL (default: those of `hgrid recommend`)");
+  sub->add_option("--K", o->K, std::string(kKHelp) + " (for recommended sizes; default as `hgrid recommend`)");
   sub->add_option("--collections", o->collections,
-                  "multi: size-class upper bounds as diameters c1,...,ck (last >= largest diameter)");
+                  "multi: size-class upper bounds as diameters c1,...,ck (last >= largest diameter), or 'model': "
+                  "the sizes of `hgrid recommend`");
   sub->add_option("--classes", o->classes, "multi, without --collections: k geometric classes")->default_val(4);
   sub->add_option("--smallest", o->smallest, "multi, without --collections: smallest class bound (default 2 r_min)");
   sub->add_option("--builds", o->builds, "timed neighbour-list builds per run")->default_val(10);

@@ -2,11 +2,9 @@
 // `hgrid modelfigs` (the data behind the paper's Figs. 2-10).
 #include <filesystem>
 #include <cmath>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "cli/common.hpp"
 #include "io/atomic_file.hpp"
@@ -19,6 +17,7 @@
 #include "grid/error.hpp"
 #include "packing/packing.hpp"
 #include "io/packing_file.hpp"
+#include "io/particle_file.hpp"
 
 namespace hgrid::cli {
 
@@ -32,35 +31,11 @@ struct ModelOptions {
   double n = 1e6;  // particles, for --cost time
   int levels = 0;  // 0: search L*
   bool json = false, excluded_sizes = false;
+  bool d_given = false, nu_given = false;  // --d, --nu on the command line (else, with --radii, the file's)
 };
 
-/// Radii from an HDF5 packing (.h5/.hdf5) or a text file: the last number
-/// of each non-empty line not starting with '#' (a plain list, or "x y z r").
-std::vector<double> read_radii(const std::string& path) {
-  const auto ends = [&](const std::string& suf) {
-    return path.size() >= suf.size() && path.compare(path.size() - suf.size(), suf.size(), suf) == 0;
-  };
-  if (ends(".h5") || ends(".hdf5")) return read_packing(path, Isolation::child_process).radii;
-  std::ifstream in(path);
-  if (!in) throw InputError("radii", "cannot open '" + path + "'");
-  std::vector<double> out;
-  std::string line;
-  for (int no = 1; std::getline(in, line); ++no) {
-    const auto first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
-    std::istringstream ss(line);
-    double v = 0, last = 0;
-    int count = 0;
-    while (ss >> v) last = v, ++count;
-    if (count == 0 || !ss.eof())
-      throw InputError("radii", path + ":" + std::to_string(no) + ": expected numbers, the radius last");
-    out.push_back(last);
-  }
-  return out;
-}
-
-std::unique_ptr<Distribution> make_distribution(const ModelOptions& o) {
-  if (!o.radii_file.empty()) return std::make_unique<Empirical>(read_radii(o.radii_file));
+std::unique_ptr<Distribution> make_distribution(const ModelOptions& o, const std::optional<ParticleSet>& file) {
+  if (file) return std::make_unique<Empirical>(file->radii);
   if (o.dist == "powerlaw") return std::make_unique<PowerLaw>(o.alpha, o.omega);
   if (o.dist == "lognormal") return std::make_unique<LogNormal>(LogNormal::centred(o.sigma, o.omega));
   throw InputError("dist", "must be powerlaw or lognormal (got '" + o.dist + "')");
@@ -68,14 +43,22 @@ std::unique_ptr<Distribution> make_distribution(const ModelOptions& o) {
 
 void run_model(const ModelOptions& o) {
   if (!std::isfinite(o.alpha)) throw InputError("alpha", "must be a finite number");
+  // With --radii, d and nu come from the file (its columns, its box) unless
+  // given; a file without a box needs --nu (no silent default).
+  std::optional<ParticleSet> file;
+  if (!o.radii_file.empty()) file = read_particles(o.radii_file, Isolation::child_process);
+  const bool file_has_d = file && (file->d == 2 || file->d == 3);  // else --d, default 3, as without --radii
+  const FileInputs in = file ? file_inputs(*file, o.radii_file, o.d_given || !file_has_d ? std::optional<int>(o.d) : std::nullopt,
+                                           o.nu_given ? std::optional<double>(o.nu) : std::nullopt)
+                             : FileInputs{o.d, o.nu, false};
   ModelParams p;
-  p.d = o.d;
-  p.nu = o.nu;
+  p.d = in.d;
+  p.nu = in.nu;
   p.K = resolve_K(o.K, "K");
   p.search = parse_search(o.search);
   validate(p);
   const CellMethod method = parse_cell_method(o.cells);
-  const auto dist = make_distribution(o);
+  const auto dist = make_distribution(o, file);
   auto choice = choose_cell_sizes(*dist, p, method, o.levels > 0 ? std::optional<int>(o.levels) : std::nullopt, o.q);
   std::optional<PredictedSeconds> seconds;  // --cost time: the time model's optimum replaces the count's
   if (parse_cost(o.cost) == CostKind::time) {
@@ -128,6 +111,7 @@ void run_model(const ModelOptions& o) {
                    {"cells", to_string(method)}, {"q", o.q}, {"omega", dist->omega()},
                    {"dist", o.radii_file.empty() ? o.dist : "empirical"},
                    {"levels_searched", o.levels == 0}, {"placement", o.placement}};
+    if (file) j["params"]["nu_source"] = in.nu_from_box ? "box" : "given";
     if (o.radii_file.empty() && o.dist == "powerlaw") j["params"]["alpha"] = o.alpha;
     if (o.radii_file.empty() && o.dist == "lognormal") j["params"]["sigma"] = o.sigma;
     std::cout << j.dump(2) << "\n";
@@ -153,8 +137,9 @@ void run_model(const ModelOptions& o) {
 void register_model_commands(CLI::App& app) {
   auto o = std::make_shared<ModelOptions>();
   auto* sub = app.add_subcommand("model", "Analytic cost T/N and cell sizes (paper Sects. 3-5)");
-  sub->add_option("--d", o->d, "dimension, 2 or 3")->capture_default_str();
-  sub->add_option("--nu", o->nu, "packing fraction, > 0")->capture_default_str();
+  auto* d_opt = sub->add_option("--d", o->d, "dimension, 2 or 3 (with --radii: the file's when it has one)")->capture_default_str();
+  auto* nu_opt = sub->add_option("--nu", o->nu, "packing fraction, > 0 (with --radii: from the file's box, or required)")
+                     ->capture_default_str();
   sub->add_option("--alpha", o->alpha, "power-law exponent of f(r) = C r^alpha")->capture_default_str();
   sub->add_option("--omega", o->omega, "r_max / r_min, >= 1")->capture_default_str();
   sub->add_option("--K", o->K, kKHelp)->capture_default_str();
@@ -166,7 +151,7 @@ void register_model_commands(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--sigma", o->sigma, "log-normal: standard deviation of ln r, > 0")->capture_default_str();
   sub->add_option("--radii", o->radii_file,
-                  "use the radii of FILE instead (HDF5 packing, or text: last number per line)");
+                  "use the radii of FILE instead (any particle file: docs/PARTICLE_FILES.md)");
   sub->add_option("--placement", o->placement,
                   "random (the paper's model) | excluded (hard-sphere packing: Percus-Yevick pair structure, 3D)")
       ->capture_default_str();
@@ -178,9 +163,11 @@ void register_model_commands(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--n", o->n, "with --cost time: number of particles")->capture_default_str();
   sub->add_flag("--json", o->json, "print JSON: levels, sizes (units of r_min), T_over_N, ...");
-  sub->callback([o, lv] {
+  sub->callback([o, lv, d_opt, nu_opt] {
     if (lv->count() > 0 && o->levels < 1)
       throw InputError("levels", "must be >= 1 (got " + std::to_string(o->levels) + ")");
+    o->d_given = d_opt->count() > 0;
+    o->nu_given = nu_opt->count() > 0;
     run_model(*o);
   });
 

@@ -2,7 +2,10 @@
 #pragma once
 #include <CLI/CLI.hpp>
 
+#include <optional>
 #include <string>
+
+#include "io/particle_file.hpp"
 
 namespace hgrid::cli {
 
@@ -13,6 +16,7 @@ void register_generate_commands(CLI::App& app);  // generate, info (cmd_generate
 void register_run_commands(CLI::App& app);       // run           (cmd_run.cpp)
 void register_export_commands(CLI::App& app);    // export        (cmd_export.cpp)
 void register_calibrate_commands(CLI::App& app);  // calibrate   (cmd_calibrate.cpp)
+void register_recommend_commands(CLI::App& app);  // recommend   (cmd_recommend.cpp)
 
 /// A --K option's text: a number >= 0, or "auto" (the stored calibration).
 inline constexpr const char* kKHelp =
@@ -20,6 +24,16 @@ inline constexpr const char* kKHelp =
 
 /// Exit status for bad input (file, parameter): one line on stderr, status 2.
 inline constexpr int kBadInput = 2;
+
+/// d and nu for the particles `s` read from `file`: the options when given,
+/// else the file's (its columns, its box); an InputError naming d or nu, and
+/// the option to give, when neither has it (cmd_recommend.cpp).
+struct FileInputs {
+  int d = 3;
+  double nu = 0;
+  bool nu_from_box = false;
+};
+FileInputs file_inputs(const ParticleSet& s, const std::string& file, std::optional<int> d, std::optional<double> nu);
 
 /// Parse "a,b,c" into doubles; throws hgrid::InputError naming `field`.
 std::vector<double> parse_list(const std::string& text, const std::string& field);

@@ -78,6 +78,7 @@ int main(int argc, char** argv) {
   hgrid::cli::register_run_commands(app);
   hgrid::cli::register_export_commands(app);
   hgrid::cli::register_calibrate_commands(app);
+  hgrid::cli::register_recommend_commands(app);
   // An empty value ("--cells ''") is refused, not taken for "not given".
   const CLI::Validator non_empty([](std::string& v) { return v.empty() ? std::string("must not be empty") : ""; },
                                  "", "non-empty");

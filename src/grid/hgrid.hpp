@@ -93,6 +93,21 @@ class HGrid {
   }
   const GridParams& params() const { return params_; }
   const Extent<D>& box() const { return box_; }
+
+  /// Where a sphere is (or would be) stored: its level of insertion (0-based,
+  /// the lowest h with 2 r <= s_h) and the linear index of its cell in that
+  /// level (last axis fastest; a periodic centre is wrapped into the box first).
+  struct Placement {
+    int level;
+    std::uint64_t cell;
+  };
+  Placement placement(const Sphere<D>& s) const {
+    const int h = insertion_level(s.r);
+    std::array<double, D> x = s.x;
+    if constexpr (B == Boundary::periodic)
+      for (int a = 0; a < D; ++a) x[a] = detail::wrap(x[a], box_[a]);
+    return {h, levels_[h].key(levels_[h].cell(x))};
+  }
   /// Bytes of the workspace kept by rebuild() (none after construction).
   std::size_t workspace_bytes() const { return scratch_.bytes(); }
   /// Bytes held by the grid, including its sorted copy of the particles
@@ -106,6 +121,13 @@ class HGrid {
   }
 
  private:
+  /// The level of insertion: the lowest h with 2 r <= s_h (Eq. 3); the
+  /// effective sizes never decrease with h.
+  int insertion_level(double r) const {
+    int h = 0;
+    while (h < levels() - 1 && 2 * r > levels_[h].s_min) ++h;
+    return h;
+  }
   using Coords = std::array<std::int64_t, D>;
 
   /// Working arrays of a build (keys, coarse buckets, in-bucket sort

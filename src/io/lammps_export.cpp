@@ -11,6 +11,7 @@
 #include "grid/error.hpp"
 #include "io/provenance.hpp"
 #include "io/atomic_file.hpp"
+#include "io/peer_settings.hpp"
 
 namespace hgrid {
 namespace {
@@ -41,6 +42,15 @@ std::vector<double> geometric_collections(const Packing& p, int k, double smalle
   c.back() = dmax;
   c.erase(std::unique(c.begin(), c.end()), c.end());  // smallest == dmax collapses to one class
   return c;
+}
+
+std::string lammps_collection_interval(const std::vector<double>& collections) {
+  std::string line = "neigh_modify collection/interval " + std::to_string(collections.size());
+  for (double v : collections) {  // piece by piece: GCC 12 warns (-Wrestrict) on " " + string
+    line += ' ';
+    line += shortest_number(v);
+  }
+  return line;
 }
 
 std::string lammps_data(const Packing& p) {
@@ -91,9 +101,7 @@ std::string lammps_input(const Packing& p, const LammpsScript& s) {
         throw InputError("collections", "class bounds must be finite, > 0 and increasing");
     }
     if (c.back() < dmax) throw InputError("collections", "the last class bound must be >= the largest diameter " + format_number(dmax));
-    o << "neighbor 0.0 multi\nneigh_modify collection/interval " << c.size();
-    for (double v : c) o << " " << format_number(v);
-    o << "\ncomm_modify mode multi\n";
+    o << "neighbor 0.0 multi\n" << lammps_collection_interval(c) << "\ncomm_modify mode multi\n";
   } else {
     o << "neighbor 0.0 bin\n";
   }

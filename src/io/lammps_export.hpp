@@ -28,6 +28,10 @@ struct LammpsScript {
 /// diameter of p (k = 1: one class of the largest diameter). Throws InputError.
 std::vector<double> geometric_collections(const Packing& p, int k, double smallest);
 
+/// "neigh_modify collection/interval k c1 ... ck", each bound the shortest
+/// text that reads back as it.
+std::string lammps_collection_interval(const std::vector<double>& collections);
+
 /// The data file text: `atom_style sphere` lines `id type diameter density x y z`
 /// (one atom type, density 1). Periodic: the box [0, A); walls: [0, A] widened
 /// by 1e-9 A at the top (LAMMPS boxes are half open); 2D: z = 0 in a box

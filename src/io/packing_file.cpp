@@ -1,4 +1,4 @@
-// Packing files: HDF5 (read and write) and CSV (read).
+// Packing files: HDF5 (read and write); the text formats through io/particle_file.
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -17,6 +17,7 @@
 #include "io/h5.hpp"
 #include "grid/error.hpp"
 #include "io/packing_file.hpp"
+#include "io/particle_file.hpp"
 #include "io/provenance.hpp"
 
 namespace hgrid {
@@ -97,76 +98,6 @@ Packing read_h5(const std::string& path) {
       if (v.size() == 1) p.num_attrs[name] = v[0];
     }
   return p;
-}
-
-// ---- CSV -------------------------------------------------------------------
-
-Packing parse_csv(std::istream& in, const std::string& path) {
-  Packing p;
-  bool have_box = false, have_header = false;
-  std::string line;
-  std::size_t lineno = 0;
-  while (std::getline(in, line)) {
-    ++lineno;
-    if (lineno == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a UTF-8 byte-order mark
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.find_first_not_of(" \t") == std::string::npos) continue;
-    const std::string where = path + ":" + std::to_string(lineno);
-    if (line[0] == '#') {
-      std::istringstream ss(line.substr(1));
-      std::string key;
-      ss >> key;
-      if (key == "box") {
-        std::vector<double> b;
-        double v;
-        while (ss >> v) b.push_back(v);
-        if (b.size() != 2 && b.size() != 3) throw InputError("box", "'# box' needs 2 or 3 side lengths at " + where);
-        for (std::size_t a = 0; a < b.size(); ++a) p.box[a] = b[a];
-        p.d = static_cast<int>(b.size());
-        have_box = true;
-      } else if (key == "boundary") {
-        std::string b;
-        ss >> b;
-        p.boundary = parse_boundary(b);
-      }
-      continue;
-    }
-    if (!have_header) {
-      std::string h;
-      for (char c : line)
-        if (c != ' ' && c != '\t') h += c;
-      int d = h == "x,y,r" ? 2 : h == "x,y,z,r" ? 3 : 0;
-      if (d == 0) throw InputError("header", "expected 'x,y,r' or 'x,y,z,r' at " + where);
-      if (!have_box) throw InputError("box", "a '# box A1 A2 [A3]' line must come before the header in " + path);
-      if (d != p.d) throw InputError("box", "'# box' has " + std::to_string(p.d) + " sides but the header is " + h);
-      have_header = true;
-      continue;
-    }
-    if (line.find_last_not_of(" \t") != std::string::npos && line[line.find_last_not_of(" \t")] == ',')
-      throw InputError("row", "a value is missing after the last comma at " + where);
-    std::istringstream ss(line);
-    std::string cell;
-    std::vector<double> vals;
-    while (std::getline(ss, cell, ',')) {
-      char* end = nullptr;
-      const double v = std::strtod(cell.c_str(), &end);
-      while (end && (*end == ' ' || *end == '\t')) ++end;
-      if (end == cell.c_str() || (end && *end != '\0')) throw InputError("value", "'" + cell + "' is not a number at " + where);
-      vals.push_back(v);
-    }
-    if (vals.size() != static_cast<std::size_t>(p.d + 1))
-      throw InputError("row", "expected " + std::to_string(p.d + 1) + " values at " + where);
-    for (int a = 0; a < p.d; ++a) p.positions.push_back(vals[a]);
-    p.radii.push_back(vals[p.d]);
-  }
-  if (!have_header) throw InputError("header", "no 'x,y,r' or 'x,y,z,r' header in " + path);
-  return p;
-}
-
-Packing read_csv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError("file", "cannot open '" + path + "'");
-  return parse_csv(in, path);
 }
 
 // ---- HDF5 in a child process ------------------------------------------------
@@ -305,23 +236,22 @@ Packing read_h5_in_child(const std::string& path) {
   return decode(msg);
 }
 
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 }  // namespace
 
 Packing parse_packing_csv(std::istream& in, const std::string& name) {
-  Packing p = parse_csv(in, name);
-  validate(p);
-  return p;
+  std::ostringstream text;
+  text << in.rdbuf();
+  return to_packing(parse_particles(text.str(), name), name);
+}
+
+Packing read_hdf5_packing(const std::string& path, Isolation isolation) {
+  return isolation == Isolation::child_process ? read_h5_in_child(path) : read_h5(path);
 }
 
 Packing read_packing(const std::string& path, Isolation isolation) {
+  if (!hdf5_file(path)) return to_packing(read_particles(path, isolation), path);
   if (!std::filesystem::exists(path)) throw InputError("file", "'" + path + "' does not exist");
-  Packing p = ends_with(path, ".csv")                      ? read_csv(path)
-              : isolation == Isolation::child_process ? read_h5_in_child(path)
-                                                          : read_h5(path);
+  Packing p = read_hdf5_packing(path, isolation);  // with the file's attributes
   validate(p);
   return p;
 }

@@ -17,14 +17,18 @@ enum class Isolation { none, child_process };
 /// Seconds a child may take to read an HDF5 file: this plus one per 100 MB.
 inline constexpr double kIsolatedReadBaseSeconds = 5;
 
-/// Reads a packing from an HDF5 file or a CSV file (by the .csv ending),
+/// Reads a packing from any particle file that has centres and a box (HDF5,
+/// CSV or text with `# box`, LAMMPS data and dump files; io/particle_file.hpp),
 /// validates it (see validate()) and returns it. Throws InputError naming the
 /// field that is wrong.
 Packing read_packing(const std::string& path, Isolation isolation = Isolation::none);
 
-/// Reads a packing from CSV text (the format of read_packing's .csv files);
-/// `name` names the source in messages.
+/// Reads a packing from text in any of the text formats; `name` names the
+/// source in messages.
 Packing parse_packing_csv(std::istream& in, const std::string& name);
+
+/// An HDF5 packing file as stored (not validated).
+Packing read_hdf5_packing(const std::string& path, Isolation isolation);
 
 /// Writes a packing as HDF5 (datasets /positions N x d and /radii N; root
 /// attributes d, box, boundary, the packing's own attributes and the

@@ -8,7 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 build=${1:-build-fuzz}
 seconds=${2:-60}
-for target in csv scene journal hdf5; do
+for target in csv particles scene journal hdf5; do
   bin="$build/fuzz_$target"
   work="$build/fuzz-corpus/$target"  # the growing corpus stays out of the repository
   mkdir -p "$work"

@@ -51,13 +51,6 @@ void HGrid<D, B>::build(std::span<const Sphere<D>> spheres, Scratch& ws) {
     }
     return p;
   };
-  // The level of insertion: the lowest h with 2 r <= s_h (Eq. 3); the
-  // effective sizes never decrease with h.
-  const auto level_of = [&](double r) {
-    int h = 0;
-    while (h < L - 1 && 2 * r > levels_[h].s_min) ++h;
-    return h;
-  };
 
   // The sort by (level, cell key) runs in two steps, so that neither makes
   // random accesses over all N particles (which is what bounds a gather or a
@@ -82,7 +75,7 @@ void HGrid<D, B>::build(std::span<const Sphere<D>> spheres, Scratch& ws) {
     std::uint32_t coarse;
   };
   const auto place = [&](const Sphere<D>& p) {
-    const int h = level_of(p.r);
+    const int h = insertion_level(p.r);
     const std::uint64_t k = levels_[h].key(levels_[h].cell(p.x));
     return Place{k, coarse_base[h] + static_cast<std::uint32_t>(k >> shift[h])};
   };

@@ -1,0 +1,162 @@
+// The Python module `hgridlab` (pybind11): cell sizes for a list of radii,
+// the overlapping pairs and the counted work of an HGrid search, and the
+// particle file readers. numpy arrays in and out; an InputError becomes a
+// ValueError with the same one-line message. Uses the library's public
+// headers only.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "experiment/k_choice.hpp"
+#include "experiment/recommend.hpp"
+#include "experiment/recommend_json.hpp"
+#include "grid/dispatch.hpp"
+#include "grid/error.hpp"
+#include "grid/hgrid.hpp"
+#include "grid/version.hpp"
+#include "io/particle_file.hpp"
+#include "packing/packing.hpp"
+
+namespace py = pybind11;
+using namespace hgrid;
+
+namespace {
+
+using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+std::vector<double> to_vector(const DoubleArray& a, const char* field) {
+  if (a.ndim() != 1) throw InputError(field, "must be a 1-D array");
+  return std::vector<double>(a.data(), a.data() + a.size());
+}
+
+/// A validated Packing from numpy arrays (positions N x d, radii N, box d).
+Packing make_packing(const DoubleArray& positions, const DoubleArray& radii, const DoubleArray& box, bool periodic) {
+  if (positions.ndim() != 2) throw InputError("positions", "must be an N x d array");
+  Packing p;
+  p.d = static_cast<int>(positions.shape(1));
+  if (p.d != 2 && p.d != 3) throw InputError("positions", "must have 2 or 3 columns");
+  p.radii = to_vector(radii, "radii");
+  if (static_cast<std::size_t>(positions.shape(0)) != p.radii.size())
+    throw InputError("radii", "must have one value per row of positions");
+  const std::vector<double> b = to_vector(box, "box");
+  if (b.size() != static_cast<std::size_t>(p.d)) throw InputError("box", "must have d side lengths");
+  for (int a = 0; a < p.d; ++a) p.box[a] = b[a];
+  p.boundary = periodic ? Boundary::periodic : Boundary::walls;
+  p.positions.assign(positions.data(), positions.data() + positions.size());
+  validate(p);
+  return p;
+}
+
+/// `sizes` when given, else the recommended sizes for the packing.
+GridParams grid_params(const Packing& p, const std::optional<std::vector<double>>& sizes, const std::string& search) {
+  const Search s = parse_search(search);
+  if (sizes) return GridParams{*sizes, s};
+  return GridParams{recommend_cell_sizes(p.radii, ModelParams{p.d, p.packing_fraction(), choose_K("").K, s}).sizes, s};
+}
+
+py::dict recommend(const DoubleArray& radii, double nu, int d, const std::optional<py::object>& K,
+                   const std::string& search) {
+  std::string k_text;
+  if (K && !K->is_none()) k_text = py::isinstance<py::str>(*K) ? K->cast<std::string>() : format_number(K->cast<double>());
+  const KChoice k = choose_K(k_text);
+  const Search s = parse_search(search);
+  const Recommendation r = recommend_cell_sizes(to_vector(radii, "radii"), ModelParams{d, nu, k.K, s});
+  py::dict out = py::module_::import("json").attr("loads")(recommendation_json(r, k, s, 0.0));
+  out["d"] = d;
+  out["nu"] = nu;
+  return out;
+}
+
+py::array_t<std::uint32_t> pairs(const DoubleArray& positions, const DoubleArray& radii, const DoubleArray& box,
+                                 bool periodic, const std::optional<std::vector<double>>& sizes,
+                                 const std::string& search) {
+  const Packing p = make_packing(positions, radii, box, periodic);
+  const GridParams params = grid_params(p, sizes, search);
+  std::vector<std::uint32_t> flat;
+  {
+    py::gil_scoped_release release;
+    dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
+      constexpr int D = decltype(dim)::value;
+      const auto spheres = p.spheres<D>();
+      const HGrid<D, decltype(bnd)::value> grid(spheres, p.extent<D>(), params);
+      grid.for_each_pair([&](std::uint32_t i, std::uint32_t j) { flat.push_back(i), flat.push_back(j); });
+    });
+  }
+  py::array_t<std::uint32_t> out({static_cast<py::ssize_t>(flat.size() / 2), py::ssize_t{2}});
+  std::copy(flat.begin(), flat.end(), out.mutable_data());
+  return out;
+}
+
+py::dict count(const DoubleArray& positions, const DoubleArray& radii, const DoubleArray& box, bool periodic,
+               const std::optional<std::vector<double>>& sizes, const std::string& search, double K) {
+  const Packing p = make_packing(positions, radii, box, periodic);
+  const GridParams params = grid_params(p, sizes, search);
+  std::vector<double> used;
+  const Counters c = dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
+    constexpr int D = decltype(dim)::value;
+    const auto spheres = p.spheres<D>();
+    const HGrid<D, decltype(bnd)::value> grid(spheres, p.extent<D>(), params);
+    used = grid.sizes();
+    return grid.template for_each_pair<Counted>([](std::uint32_t, std::uint32_t) {});
+  });
+  py::dict out;
+  out["cell_accesses"] = c.cell_accesses;
+  out["narrow_phase_checks"] = c.narrow_phase_checks;
+  out["contacts"] = c.contacts;
+  out["levels"] = c.levels;
+  out["particles_per_level"] = c.particles_per_level;
+  out["accesses_by_level"] = c.accesses_by_level;
+  out["checks_by_level"] = c.checks_by_level;
+  out["sizes"] = used;
+  out["K"] = K;
+  out["T_over_N"] = p.size() ? c.cost(K) / static_cast<double>(p.size()) : 0.0;
+  return out;
+}
+
+py::dict read_particle_file(const std::string& path) {
+  ParticleSet s = read_particles(path, Isolation::child_process);
+  py::dict out;
+  out["format"] = to_string(s.format);
+  out["d"] = s.d;
+  out["radii"] = py::array_t<double>(static_cast<py::ssize_t>(s.size()), s.radii.data());
+  if (s.has_positions()) {
+    py::array_t<double> pos({static_cast<py::ssize_t>(s.size()), static_cast<py::ssize_t>(s.d)});
+    std::copy(s.positions.begin(), s.positions.end(), pos.mutable_data());
+    out["positions"] = pos;
+  } else {
+    out["positions"] = py::none();
+  }
+  out["box"] = s.box ? py::cast(std::vector<double>(s.box->begin(), s.box->begin() + s.d)) : py::none();
+  out["boundary"] = s.mixed_boundary ? py::cast("mixed") : s.boundary ? py::cast(to_string(*s.boundary)) : py::none();
+  out["nu"] = s.box && s.d > 0 ? py::cast(s.packing_fraction()) : py::none();
+  return out;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(hgridlab, m) {
+  m.doc() = "hgridlab: hierarchical-grid (HGrid) contact detection and its cost model "
+            "(Krijgsman, Ogarko & Luding, Comp. Part. Mech. 1 (2014))";
+  py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+  m.def("recommend", &recommend, py::arg("radii"), py::arg("nu"), py::arg("d") = 3, py::arg("K") = py::none(),
+        py::arg("search") = "topdown",
+        "Optimal cell sizes for these radii (any unit) at packing fraction nu: a dict with the keys of "
+        "`hgrid recommend --json` that do not describe a file (levels, sizes in the radii's unit, T_over_N, speedup "
+        "over the linked cell, K and K_source, lammps and mercurydpm lines, ...) plus d and nu. K: a number, 'auto', "
+        "or None for the stored calibration if any, else 0.2.");
+  m.def("pairs", &pairs, py::arg("positions"), py::arg("radii"), py::arg("box"), py::arg("periodic") = true,
+        py::arg("sizes") = py::none(), py::arg("search") = "topdown",
+        "Every overlapping pair (i, j), i < j, as an (M, 2) uint32 array; sizes: cell sizes (default: recommended).");
+  m.def("count", &count, py::arg("positions"), py::arg("radii"), py::arg("box"), py::arg("periodic") = true,
+        py::arg("sizes") = py::none(), py::arg("search") = "topdown", py::arg("K") = kPaperK,
+        "The counted search: cell_accesses, narrow_phase_checks, contacts, particles_per_level, accesses_by_level and "
+        "checks_by_level (L x L, row-major: level of the particle, level searched), the sizes used, T_over_N.");
+  m.def("read_packing", &read_particle_file, py::arg("path"),
+        "A particle file of any supported format: radii, positions (or None), box (or None), boundary (or None), "
+        "d, format, nu (or None).");
+  m.attr("__version__") = HGRIDLAB_VERSION;
+}

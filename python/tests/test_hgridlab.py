@@ -1,0 +1,119 @@
+"""The Python module hgridlab: recommend, pairs, count, read_packing.
+
+Run by ctest (Python.Pytest) with PYTHONPATH=<build>/python; seeds are
+parameters, tolerances named constants."""
+import json
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import hgridlab
+
+SEED = 7
+SAME_SIZES_REL_TOL = 1e-12  # the module and the command run the same code on the same doubles
+
+
+def power_law_radii(rng, n, alpha=-3.0, omega=10.0):
+    """Radii r^alpha on [1, omega] by inverse CDF."""
+    u = rng.random(n)
+    e = alpha + 1.0
+    return (1.0 + u * (omega**e - 1.0)) ** (1.0 / e)
+
+
+def scene(n=300, nu=0.3, d=3, seed=SEED):
+    rng = np.random.default_rng(seed)
+    radii = power_law_radii(rng, n)
+    vol = np.sum(np.pi * radii**2) if d == 2 else np.sum(4.0 / 3.0 * np.pi * radii**3)
+    side = (vol / nu) ** (1.0 / d)
+    positions = rng.random((n, d)) * side
+    return positions, radii, np.full(d, side)
+
+
+def brute_pairs(positions, radii, box, periodic):
+    diff = positions[:, None, :] - positions[None, :, :]
+    if periodic:
+        diff -= box * np.round(diff / box)
+    dist2 = np.sum(diff**2, axis=-1)
+    reach = (radii[:, None] + radii[None, :]) ** 2
+    i, j = np.nonzero(np.triu(dist2 <= reach, k=1))
+    return set(zip(i.tolist(), j.tolist()))
+
+
+@pytest.fixture(autouse=True)
+def no_calibration(monkeypatch, tmp_path):
+    monkeypatch.setenv("HGRID_CALIBRATION", str(tmp_path / "none.json"))
+
+
+def test_version():
+    assert hgridlab.__version__.count(".") == 2
+
+
+def test_recommend_matches_the_command(tmp_path):
+    _, radii, _ = scene(n=2000)
+    r = hgridlab.recommend(radii, nu=0.6, d=3)
+    assert r["K_source"] == "paper" and r["K"] == 0.2
+    assert r["levels"] >= 2 and r["levels"] == len(r["sizes"])
+    assert all(a < b for a, b in zip(r["sizes"], r["sizes"][1:]))
+    assert r["sizes"][-1] == 2 * radii.max()
+    assert r["speedup"] == pytest.approx(r["linked_cell_T_over_N"] / r["T_over_N"], rel=1e-15)
+    assert r["lammps"][1].startswith("neigh_modify collection/interval %d " % r["levels"])
+    path = tmp_path / "r.txt"
+    path.write_text("".join("%r\n" % v for v in radii.tolist()))
+    out = subprocess.run([os.environ["HGRID_BINARY"], "recommend", str(path), "--nu", "0.6", "--d", "3", "--json"],
+                         check=True, capture_output=True, text=True).stdout
+    j = json.loads(out)
+    assert j["sizes"] == pytest.approx(r["sizes"], rel=SAME_SIZES_REL_TOL)
+    assert set(r) == set(j) - {"file", "format", "n", "nu_source", "box", "boundary"}
+    assert hgridlab.recommend(radii, 0.6, 3, K=0.8)["K_source"] == "given"
+
+
+def test_recommend_refuses_bad_input():
+    with pytest.raises(ValueError, match="radii"):
+        hgridlab.recommend(np.array([1.0, -1.0]), nu=0.5, d=3)
+    with pytest.raises(ValueError, match="nu"):
+        hgridlab.recommend(np.array([1.0, 2.0]), nu=-1, d=3)
+
+
+@pytest.mark.parametrize("d,periodic", [(3, True), (3, False), (2, True)])
+def test_pairs_equal_brute_force(d, periodic):
+    positions, radii, box = scene(d=d, nu=0.4)
+    if not periodic:
+        positions = np.clip(positions, 0, box)
+    got = hgridlab.pairs(positions, radii, box, periodic)
+    assert got.dtype == np.uint32 and got.ndim == 2 and got.shape[1] == 2
+    assert np.all(got[:, 0] < got[:, 1])
+    assert set(map(tuple, got.tolist())) == brute_pairs(positions, radii, box, periodic)
+    assert len(got) > 0
+    fixed = hgridlab.pairs(positions, radii, box, periodic, sizes=[4.0, 2 * radii.max()])
+    assert set(map(tuple, fixed.tolist())) == brute_pairs(positions, radii, box, periodic)
+
+
+def test_count_returns_the_counts():
+    positions, radii, box = scene(nu=0.4)
+    c = hgridlab.count(positions, radii, box, True, sizes=[4.0, 2 * radii.max()], K=0.5)
+    assert c["contacts"] == len(hgridlab.pairs(positions, radii, box, True, sizes=[4.0, 2 * radii.max()]))
+    assert c["levels"] == 2 and len(c["accesses_by_level"]) == 2 * 2  # L x L: level of the particle, level searched
+    assert sum(c["particles_per_level"]) == len(radii)
+    assert c["T_over_N"] == pytest.approx((c["narrow_phase_checks"] + 0.5 * c["cell_accesses"]) / len(radii), rel=1e-15)
+    with pytest.raises(ValueError, match="sizes"):
+        hgridlab.count(positions, radii, box, True, sizes=[1.0])  # below the largest diameter
+
+
+def test_read_packing_every_kind(tmp_path):
+    csv = tmp_path / "p.csv"
+    csv.write_text("# box 10 10 10\n# boundary walls\nid,x,y,z,diameter\n1,1,2,3,1\n2,4,5,6,0.5\n")
+    p = hgridlab.read_packing(str(csv))
+    assert p["format"] == "table" and p["d"] == 3 and p["boundary"] == "walls"
+    assert p["radii"].tolist() == [0.5, 0.25]
+    assert p["positions"].shape == (2, 3) and p["positions"][1].tolist() == [4, 5, 6]
+    assert p["box"] == [10, 10, 10]
+    radii_only = tmp_path / "r.txt"
+    radii_only.write_text("0.5\n1\n")
+    q = hgridlab.read_packing(str(radii_only))
+    assert q["positions"] is None and q["box"] is None and q["nu"] is None
+    bad = tmp_path / "bad.txt"
+    bad.write_text("x y r\n1 2 0.5\n1 2 zz\n")
+    with pytest.raises(ValueError, match="bad.txt:3"):
+        hgridlab.read_packing(str(bad))

@@ -1,0 +1,134 @@
+// hgrid recommend FILE: the cost model's cell sizes for one's own particles,
+// in the file's unit, with the predicted speed-up over the linked cell and
+// settings to paste into LAMMPS and MercuryDPM (docs/RECOMMEND.md).
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "cli/common.hpp"
+#include "experiment/k_choice.hpp"
+#include "experiment/recommend.hpp"
+#include "experiment/recommend_json.hpp"
+#include "grid/error.hpp"
+#include "io/particle_file.hpp"
+#include "io/peer_settings.hpp"
+
+namespace hgrid::cli {
+namespace {
+
+struct RecommendOptions {
+  std::string file, K, search = "topdown";
+  std::optional<double> nu;
+  std::optional<int> d;
+  double skin = 0;
+  bool json = false;
+};
+
+/// Every key of --json, for --help and docs/RECOMMEND.md.
+constexpr const char* kJsonKeys =
+    "--json keys: file, format (hdf5|table|lammps_data|lammps_dump), n, d, r_min, r_max, omega (r_max/r_min), "
+    "nu, nu_source (box|given), box (side lengths or null), boundary, K, K_source (given|calibration|paper), "
+    "calibration_path, search, levels, sizes (exact cell sizes, file's unit), sizes_pasted (rounded up to 6 digits, "
+    "as in the settings), fraction_per_level, particles_per_cell, T_over_N, T_cd_over_N (overlap tests), "
+    "T_ca_over_N (cell accesses), linked_cell_size (2 r_max), linked_cell_T_over_N, speedup "
+    "(linked_cell_T_over_N / T_over_N), lammps (input lines), mercurydpm (code lines). T = tests + K accesses.";
+
+std::string k_text(const KChoice& k) {
+  switch (k.source) {
+    case KSource::given: return "given";
+    case KSource::calibration: return "this machine's calibration, " + k.calibration_path;
+    case KSource::paper: return "the paper's value; no calibration at " + k.calibration_path + "; `hgrid calibrate` measures one";
+  }
+  return "";
+}
+
+void print_text(const RecommendOptions& o, const ParticleSet& s, const FileInputs& in, const KChoice& k,
+                const Recommendation& r, Search search) {
+  std::printf("%s: %zu particles (%s, %dD), r_min = %g, r_max = %g (omega = %g)\n", o.file.c_str(), s.size(),
+              to_string(s.format), in.d, r.r_min, r.r_max, r.r_max / r.r_min);
+  if (in.nu_from_box)
+    std::printf("nu = %g from the file's box (boundary %s)\n", in.nu, boundary_description(s).c_str());
+  else
+    std::printf("nu = %g (given)\n", in.nu);
+  std::printf("K = %g (%s)\n\n", k.K, k_text(k).c_str());
+  std::printf("%s HGrid, %d level%s; cell sizes in the file's unit (level h holds diameters in (s_h-1, s_h]):\n",
+              search == Search::top_down ? "Top-Down" : "Bottom-Up", r.levels(), r.levels() == 1 ? "" : "s");
+  std::printf("%7s %14s %12s %12s\n", "level", "cell size", "particles", "per cell");
+  for (int h = 0; h < r.levels(); ++h)
+    std::printf("%7d %14.6g %11.4g%% %12.4g\n", h + 1, r.sizes[h], 100 * r.model.P[h], r.model.m[h]);
+  std::printf("predicted T/N = %.4g (overlap tests %.4g + K x cell accesses %.4g, per particle)\n", r.model.T_over_N,
+              r.model.T_cd_over_N, r.model.T_ca_over_N);
+  std::printf("linked cell (one level of size 2 r_max = %g): T/N = %.4g; predicted speed-up %.4gx\n\n",
+              r.linked_cell_size, r.linked_cell.T_over_N, r.speedup());
+  std::printf("LAMMPS (atom_style sphere, granular pair style; sizes rounded up to %d digits):\n", kPasteDigits);
+  for (const auto& line : lammps_settings(r.sizes, o.skin)) std::printf("  %s\n", line.c_str());
+  std::printf("\nMercuryDPM:\n");
+  for (const auto& line : mercurydpm_settings(r.sizes, search)) std::printf("  %s\n", line.c_str());
+}
+
+void print_json(const RecommendOptions& o, const ParticleSet& s, const FileInputs& in, const KChoice& k,
+                const Recommendation& r, Search search) {
+  nlohmann::json j = nlohmann::json::parse(recommendation_json(r, k, search, o.skin));
+  j["file"] = o.file;
+  j["format"] = to_string(s.format);
+  j["n"] = s.size();
+  j["d"] = in.d;
+  j["nu"] = in.nu;
+  j["nu_source"] = in.nu_from_box ? "box" : "given";
+  j["box"] = s.box ? nlohmann::json(std::vector<double>(s.box->begin(), s.box->begin() + in.d)) : nlohmann::json();
+  j["boundary"] = boundary_description(s);
+  std::cout << j.dump(2) << "\n";
+}
+
+void run_recommend(const RecommendOptions& o) {
+  if (!(std::isfinite(o.skin) && o.skin >= 0)) throw InputError("skin", "must be a finite number >= 0");
+  const Search search = parse_search(o.search);
+  const ParticleSet s = read_particles(o.file, Isolation::child_process);
+  const FileInputs in = file_inputs(s, o.file, o.d, o.nu);
+  const KChoice k = choose_K(o.K);
+  const Recommendation r = recommend_cell_sizes(s.radii, ModelParams{in.d, in.nu, k.K, search});
+  if (o.json) print_json(o, s, in, k, r, search);
+  else print_text(o, s, in, k, r, search);
+}
+
+}  // namespace
+
+FileInputs file_inputs(const ParticleSet& s, const std::string& file, std::optional<int> d, std::optional<double> nu) {
+  FileInputs in;
+  if (d) {
+    if (*d != 2 && *d != 3) throw InputError("d", "must be 2 or 3 (got " + std::to_string(*d) + ")");
+    in.d = *d;
+  } else if (s.d == 2 || s.d == 3) {
+    in.d = s.d;
+  } else {
+    throw InputError("d", file + " holds radii only: give --d 2 or --d 3");
+  }
+  if (nu) {
+    if (!(std::isfinite(*nu) && *nu > 0)) throw InputError("nu", "must be a finite number > 0 (got " + format_number(*nu) + ")");
+    in.nu = *nu;
+  } else if (s.box && s.d == in.d) {
+    in.nu = s.packing_fraction();
+    in.nu_from_box = true;
+  } else {
+    throw InputError("nu", file + " has no box: give --nu, the packing fraction of your system (e.g. --nu 0.6)");
+  }
+  return in;
+}
+
+void register_recommend_commands(CLI::App& app) {
+  auto o = std::make_shared<RecommendOptions>();
+  auto* sub = app.add_subcommand("recommend", "cell sizes for your own particles, and settings for LAMMPS and MercuryDPM");
+  sub->add_option("FILE", o->file, "particle file (HDF5, CSV/text, LAMMPS data or dump; docs/PARTICLE_FILES.md)")->required();
+  sub->add_option("--nu", o->nu, "packing fraction (default: from the file's box; needed when it has none)");
+  sub->add_option("--d", o->d, "dimension, 2 or 3 (default: from the file)");
+  sub->add_option("--K", o->K, std::string(kKHelp) + " (default: the stored calibration if any, else 0.2)");
+  sub->add_option("--search", o->search, "topdown | bottomup")->capture_default_str();
+  sub->add_option("--skin", o->skin, "LAMMPS neighbor skin to print (the file's unit)")->capture_default_str();
+  sub->add_flag("--json", o->json, "print JSON (keys below)");
+  sub->footer(kJsonKeys);
+  sub->callback([o] { run_recommend(*o); });
+}
+
+}  // namespace hgrid::cli

@@ -1,0 +1,35 @@
+#include "experiment/recommend.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "grid/error.hpp"
+#include "model/cell_sizes.hpp"
+#include "model/distribution.hpp"
+
+namespace hgrid {
+
+Recommendation recommend_cell_sizes(const std::vector<double>& radii, const ModelParams& p) {
+  validate(p);
+  if (radii.empty()) throw InputError("radii", "no particles to choose cell sizes for");
+  for (double r : radii)
+    if (!(std::isfinite(r) && r > 0)) throw InputError("radii", "every radius must be finite and > 0 (got " + format_number(r) + ")");
+  Recommendation out;
+  out.r_min = *std::min_element(radii.begin(), radii.end());
+  out.r_max = *std::max_element(radii.begin(), radii.end());
+  std::vector<double> scaled(radii);
+  for (double& r : scaled) r /= out.r_min;
+  const Empirical dist(std::move(scaled));
+  const SizeChoice choice = choose_cell_sizes(dist, p, CellMethod::optimal);
+  const std::vector<double> unit_sizes = sizes_for_grid(choice.sizes, 2 * dist.r_max());
+  out.model = evaluate_model(dist, p, unit_sizes);
+  out.linked_cell = evaluate_model(dist, p, {2 * dist.r_max()});
+  for (double s : unit_sizes) out.sizes.push_back(s * out.r_min);
+  out.sizes = sizes_for_grid(out.sizes, 2 * out.r_max);  // the top level holds the largest particle despite rounding
+  out.model.sizes = out.sizes;
+  out.linked_cell_size = 2 * out.r_max;
+  out.linked_cell.sizes = {out.linked_cell_size};
+  return out;
+}
+
+}  // namespace hgrid

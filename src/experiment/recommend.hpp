@@ -1,0 +1,28 @@
+// Cell sizes for one's own particles: the cost model's optimal Top-Down (or
+// Bottom-Up) grid for a list of radii, in the radii's own unit, with the
+// predicted cost and the predicted speed-up over the single-level linked cell.
+#pragma once
+#include <vector>
+
+#include "model/model.hpp"
+
+namespace hgrid {
+
+struct Recommendation {
+  std::vector<double> sizes;  // cell sizes s_1..s_L, ready for GridParams (radii's unit)
+  ModelResult model;          // the cost model at `sizes`
+  double linked_cell_size = 0;  // 2 r_max: the one level of the linked cell
+  ModelResult linked_cell;      // the cost model for it
+  double r_min = 0, r_max = 0;
+  int levels() const { return static_cast<int>(sizes.size()); }
+  /// Predicted T/N of the linked cell over that of `sizes`.
+  double speedup() const { return linked_cell.T_over_N / model.T_over_N; }
+};
+
+/// The optimal sizes (best number of levels L*) for the empirical
+/// distribution of `radii` (> 0, finite; any unit) and p (d, nu, K, search).
+/// Computed in units of r_min and scaled back, so that the same radii in
+/// another unit give the same sizes in that unit. Throws InputError.
+Recommendation recommend_cell_sizes(const std::vector<double>& radii, const ModelParams& p);
+
+}  // namespace hgrid

@@ -1,0 +1,220 @@
+#include "io/detail/lammps_reader.hpp"
+
+#include <algorithm>
+#include <optional>
+
+#include "grid/error.hpp"
+#include "io/detail/table_reader.hpp"
+#include "io/detail/text_lines.hpp"
+
+namespace hgrid::detail {
+namespace {
+
+/// Lines read before the first "N atoms" line of a data file's header is
+/// given up on.
+constexpr int kDataHeaderLines = 60;
+/// Particles reserved up front at most (a declared count may be a lie).
+constexpr std::size_t kReserveAtMost = std::size_t{1} << 20;
+
+std::string_view before_comment(std::string_view line) { return trim(line.substr(0, line.find('#'))); }
+
+bool is_section(std::string_view body) {
+  double v;
+  return !body.empty() && !to_number(split_ws(body)[0], v);
+}
+
+/// Box sides from lo/hi pairs, positions moved to the lower corner, and a 2D
+/// system (LAMMPS keeps z: every z = 0 in a box straddling it) made 2D.
+void finish(ParticleSet& s, const std::array<double, 3>& lo, const std::array<double, 3>& hi, const std::string& name) {
+  std::array<double, 3> side{};
+  for (int a = 0; a < 3; ++a) {
+    side[a] = hi[a] - lo[a];
+    if (!(side[a] > 0) || !std::isfinite(side[a]))
+      throw InputError("box", "the box bounds of axis " + std::string(1, "xyz"[a]) + " must have lo < hi in " + name);
+  }
+  s.box = side;
+  if (!s.has_positions()) return;
+  const std::size_t n = s.size();
+  bool flat = lo[2] < 0 && hi[2] > 0;
+  for (std::size_t i = 0; flat && i < n; ++i) flat = s.positions[3 * i + 2] == 0;
+  for (std::size_t i = 0; i < n; ++i)
+    for (int a = 0; a < 3; ++a) s.positions[3 * i + a] -= lo[a];
+  if (!flat) return;
+  std::vector<double> xy;
+  xy.reserve(2 * n);
+  for (std::size_t i = 0; i < n; ++i) xy.push_back(s.positions[3 * i]), xy.push_back(s.positions[3 * i + 1]);
+  s.positions = std::move(xy);
+  s.d = 2;
+}
+
+/// The next non-blank line, or InputError(field) at the end of the text.
+std::string_view next_content(Lines& at, const std::string& field, const std::string& what) {
+  std::string_view line;
+  while (at.next(line))
+    if (!blank(line)) return line;
+  throw InputError(field, at.name() + " ends before " + what);
+}
+
+/// A 3D set of `f` (a LAMMPS file keeps z even in 2D).
+ParticleSet empty_set(ParticleFormat f) {
+  ParticleSet s;
+  s.format = f;
+  s.d = 3;
+  return s;
+}
+
+void reserve(ParticleSet& s, std::size_t n, int coords) {
+  const std::size_t r = std::min(n, kReserveAtMost);
+  s.radii.reserve(r);
+  s.positions.reserve(r * coords);
+}
+
+}  // namespace
+
+bool looks_like_lammps_data(std::string_view text) {
+  Lines at(text, "");
+  std::string_view line;
+  if (!at.next(line)) return false;  // the title
+  for (int i = 0; i < kDataHeaderLines && at.next(line); ++i) {
+    const std::string_view body = before_comment(line);
+    if (body.empty()) continue;
+    const auto toks = split_ws(body);
+    double v;
+    if (toks.size() == 2 && toks[1] == "atoms" && to_number(toks[0], v)) return true;
+    if (is_section(body)) return false;
+  }
+  return false;
+}
+
+ParticleSet parse_lammps_data(std::string_view text, const std::string& name) {
+  Lines at(text, name);
+  ParticleSet s = empty_set(ParticleFormat::lammps_data);
+  std::optional<std::size_t> n;
+  std::array<double, 3> lo{-0.5, -0.5, -0.5}, hi{0.5, 0.5, 0.5};  // LAMMPS's defaults
+  std::string_view line;
+  at.next(line);  // the title
+  bool header = true;
+  while (at.next(line)) {
+    const std::string_view body = before_comment(line);
+    if (body.empty()) continue;
+    const auto toks = split_ws(body);
+    if (is_section(body)) {
+      header = false;
+      if (body != "Atoms") continue;
+      const auto hash = line.find('#');
+      const std::string style = hash == std::string_view::npos ? "" : lower(trim(line.substr(hash + 1)));
+      if (!style.empty() && style != "sphere")
+        throw InputError("atom_style", "the Atoms section is '" + style + "' at " + at.where() +
+                                           "; hgridlab reads atom_style sphere (id type diameter density x y z)");
+      if (!n) throw InputError("atoms", "no 'N atoms' line before the Atoms section in " + name);
+      reserve(s, *n, 3);
+      for (std::size_t i = 0; i < *n; ++i) {
+        const auto row = split_ws(before_comment(
+            next_content(at, "Atoms", std::to_string(*n) + " atoms are read (" + std::to_string(i) + " found)")));
+        if (row.size() != 7 && row.size() != 10)
+          throw InputError("Atoms", "expected 7 values (id type diameter density x y z) or 10 (and image flags), got " +
+                                        std::to_string(row.size()) + " at " + at.where() +
+                                        "; hgridlab reads atom_style sphere");
+        s.radii.push_back(positive_number(row[2], "diameter", at) / 2);
+        for (int a = 0; a < 3; ++a) s.positions.push_back(finite_number(row[4 + a], std::string(1, "xyz"[a]), at));
+      }
+      finish(s, lo, hi, name);
+      return s;
+    }
+    if (!header) continue;  // the body of another section
+    if (toks.size() == 2 && toks[1] == "atoms") {
+      n = count_number(toks[0], "atoms", at, kMaxParticles);
+      if (*n == 0) throw InputError("atoms", "the file declares 0 atoms at " + at.where());
+      check_memory("atoms", *n, kReadBytesPerParticle, "reading a LAMMPS data file");
+    } else if (toks.size() == 4 && toks[2].size() == 3 && toks[2].substr(1) == "lo" &&
+               toks[3].size() == 3 && toks[3].substr(1) == "hi" && toks[2][0] == toks[3][0] &&
+               (toks[2][0] == 'x' || toks[2][0] == 'y' || toks[2][0] == 'z')) {
+      const int a = toks[2][0] - 'x';
+      lo[a] = finite_number(toks[0], "box", at);
+      hi[a] = finite_number(toks[1], "box", at);
+    } else if (toks.size() == 6 && toks[3] == "xy") {
+      throw InputError("box", "a triclinic box (xy xz yz) at " + at.where() + ": hgridlab reads orthogonal boxes");
+    }
+  }
+  throw InputError("Atoms", "no 'Atoms' section in " + name);
+}
+
+ParticleSet parse_lammps_dump(std::string_view text, const std::string& name) {
+  Lines at(text, name);
+  ParticleSet s = empty_set(ParticleFormat::lammps_dump);
+  std::optional<std::size_t> n;
+  std::optional<std::array<double, 3>> lo, hi;
+  std::string_view line;
+  bool skipping = false;  // inside an ITEM this reader does not use
+  while (at.next(line)) {
+    const std::string_view t = trim(line);
+    if (t.empty()) continue;
+    if (t.substr(0, 5) != "ITEM:") {
+      if (skipping) continue;
+      throw InputError("ITEM", "expected an 'ITEM:' line at " + at.where());
+    }
+    skipping = false;
+    const std::string_view item = trim(t.substr(5));
+    if (item == "NUMBER OF ATOMS") {
+      n = count_number(trim(next_content(at, "NUMBER OF ATOMS", "the number of atoms")), "NUMBER OF ATOMS", at,
+                       kMaxParticles);
+      check_memory("NUMBER OF ATOMS", *n, kReadBytesPerParticle, "reading a LAMMPS dump");
+    } else if (item.substr(0, 10) == "BOX BOUNDS") {
+      const auto flags = split_ws(item.substr(10));
+      if (std::find(flags.begin(), flags.end(), "xy") != flags.end())
+        throw InputError("BOX BOUNDS", "a triclinic box at " + at.where() + ": hgridlab reads orthogonal boxes");
+      if (flags.size() != 3)
+        throw InputError("BOX BOUNDS", "expected three boundary flags (pp pp pp, ff ff ff, ...) at " + at.where());
+      int periodic = 0;
+      for (auto f : flags) periodic += f == "pp";
+      if (periodic == 3) s.boundary = Boundary::periodic;
+      else if (periodic == 0) s.boundary = Boundary::walls;
+      else s.mixed_boundary = true;
+      lo.emplace(), hi.emplace();
+      for (int a = 0; a < 3; ++a) {
+        const auto b = split_ws(next_content(at, "BOX BOUNDS", "the box bounds"));
+        if (b.size() != 2) throw InputError("BOX BOUNDS", "expected 'lo hi' at " + at.where());
+        (*lo)[a] = finite_number(b[0], "BOX BOUNDS", at);
+        (*hi)[a] = finite_number(b[1], "BOX BOUNDS", at);
+      }
+    } else if (item.substr(0, 5) == "ATOMS") {
+      if (!n || !lo) throw InputError("ATOMS", "'ITEM: NUMBER OF ATOMS' and 'ITEM: BOX BOUNDS' must come first, at " + at.where());
+      const auto names_sv = split_ws(item.substr(5));
+      const std::vector<std::string> names(names_sv.begin(), names_sv.end());
+      const Columns c = map_columns(names);
+      if (c.size < 0)
+        throw InputError("ATOMS", "no radius or diameter column at " + at.where() + " (dump ... radius or diameter)");
+      const int dims = c.dims();
+      if (dims < 0) throw InputError("ATOMS", "coordinates need x and y (and z in 3D) at " + at.where());
+      reserve(s, *n, dims);
+      for (std::size_t i = 0; i < *n; ++i) {
+        const auto row = split_ws(next_content(at, "ATOMS", std::to_string(*n) + " atoms are read (" + std::to_string(i) + " found)"));
+        if (row.size() != names.size())
+          throw InputError("ATOMS", "expected " + std::to_string(names.size()) + " values, got " +
+                                        std::to_string(row.size()) + " at " + at.where());
+        const double size = positive_number(row[c.size], c.diameter ? "diameter" : "radius", at);
+        s.radii.push_back(c.diameter ? size / 2 : size);
+        for (int a = 0; a < dims; ++a) {
+          const double v = finite_number(row[c.axis[a]], std::string(1, "xyz"[a]), at);
+          s.positions.push_back(c.scaled[a] ? (*lo)[a] + v * ((*hi)[a] - (*lo)[a]) : v);
+        }
+      }
+      if (s.radii.empty()) throw InputError("ATOMS", "the first snapshot of " + name + " has no atoms");
+      if (dims == 2) {  // a 2D dump: x and y only
+        s.d = 2;
+        for (std::size_t i = 0; i < s.size(); ++i)
+          for (int a = 0; a < 2; ++a) s.positions[2 * i + a] -= (*lo)[a];
+        s.box = std::array<double, 3>{(*hi)[0] - (*lo)[0], (*hi)[1] - (*lo)[1], 0};
+        if (!((*s.box)[0] > 0 && (*s.box)[1] > 0)) throw InputError("BOX BOUNDS", "lo must be < hi in " + name);
+        return s;
+      }
+      finish(s, *lo, *hi, name);
+      return s;  // the first snapshot only
+    } else {
+      skipping = true;  // TIMESTEP, UNITS, TIME, ...: their values are not needed
+    }
+  }
+  throw InputError("ATOMS", "no 'ITEM: ATOMS' section in " + name);
+}
+
+}  // namespace hgrid::detail

@@ -1,0 +1,19 @@
+// LAMMPS particle files: data files of atom_style sphere (the `Atoms # sphere`
+// section: id type diameter density x y z [ix iy iz]) and dump files (the first
+// snapshot: ITEM: BOX BOUNDS, ITEM: ATOMS with x|xu|xs y z and radius|diameter
+// in any order).
+#pragma once
+#include <string>
+#include <string_view>
+
+#include "io/particle_file.hpp"
+
+namespace hgrid::detail {
+
+/// True when the text's header (before the first section) has an "N atoms" line.
+bool looks_like_lammps_data(std::string_view text);
+
+ParticleSet parse_lammps_data(std::string_view text, const std::string& name);
+ParticleSet parse_lammps_dump(std::string_view text, const std::string& name);
+
+}  // namespace hgrid::detail

@@ -1,0 +1,62 @@
+// Particles as read from a file: the radii always, the centres and the box
+// when the file has them. Reads HDF5 packings, CSV or whitespace-separated
+// text with named columns (or the plain "x y [z] r" layout), LAMMPS data files
+// (atom_style sphere) and LAMMPS dump files; the format is found from the
+// content. `hgrid recommend` needs the radii only; a Packing (to_packing)
+// needs the centres and the box too.
+#pragma once
+#include <array>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "io/packing_file.hpp"
+#include "packing/packing.hpp"
+
+namespace hgrid {
+
+enum class ParticleFormat { hdf5, table, lammps_data, lammps_dump };
+const char* to_string(ParticleFormat f);
+
+/// What every reader says when a file matches no format.
+inline constexpr const char* kParticleFormats =
+    "HDF5 packing (.h5), CSV or whitespace text with columns x y [z] and r|radius or d|diameter, a LAMMPS data "
+    "file (Atoms # sphere) or a LAMMPS dump (ITEM: ATOMS ... x y z radius|diameter)";
+
+struct ParticleSet {
+  ParticleFormat format = ParticleFormat::table;
+  int d = 0;                          // 2 or 3; 0: not known (a list of radii only)
+  std::vector<double> radii;          // > 0 and finite, in the file's length unit
+  std::vector<double> positions;      // N x d (origin moved to the box's lower corner), or empty
+  std::optional<std::array<double, 3>> box;  // side lengths (first d used), when the file has a box
+  std::optional<Boundary> boundary;   // when the file says (`# boundary`, dump flags, HDF5)
+  bool mixed_boundary = false;        // a LAMMPS dump with periodic and non-periodic axes
+  std::size_t size() const { return radii.size(); }
+  bool has_positions() const { return !positions.empty(); }
+  /// Total particle volume over the box's (needs d and a box).
+  double packing_fraction() const;
+};
+
+/// Reads `path` in whichever supported format its content shows. Throws
+/// InputError naming the field (and file:line for text) for malformed input,
+/// and one line listing kParticleFormats for a file that matches none.
+ParticleSet read_particles(const std::string& path, Isolation isolation = Isolation::none);
+
+/// True for an HDF5 file: by its ending (.h5, .hdf5, .hdf) or its signature.
+bool hdf5_file(const std::string& path);
+
+/// The text formats (table, LAMMPS data, LAMMPS dump) from memory; `name`
+/// names the source in messages.
+ParticleSet parse_particles(std::string_view text, const std::string& name);
+
+/// A Packing for the grids: needs d, centres and a box (InputError "box" or
+/// "positions" naming `name` otherwise). A file without a boundary gives a
+/// periodic box (the README's rule); a mixed one is refused. Validated.
+Packing to_packing(ParticleSet s, const std::string& name);
+
+/// What the boundary of a packing made from `s` is and where it comes from:
+/// "periodic", "walls", or "periodic (not in the file: assumed)".
+std::string boundary_description(const ParticleSet& s);
+
+}  // namespace hgrid
