@@ -140,6 +140,21 @@ TEST_F(Recommend, NuAndDFromOptionsOrAClearError) {
   EXPECT_NE(text.out.find("setHGridDistribution(USER);"), std::string::npos);
 }
 
+/// A calibration file that exists but does not read (an older format, say):
+/// recommend falls back to the paper's K and says why; --K auto refuses it.
+TEST_F(Recommend, UnreadableCalibrationFallsBackToThePapersKAndSaysWhy) {
+  std::ofstream(path("r.txt")) << "0.5\n1\n2\n";
+  std::ofstream(path("cal.json")) << "{\"format\": \"something else\"}\n";
+  const std::string env = "HGRID_CALIBRATION=" + path("cal.json");
+  Result r = hgrid_run("recommend " + path("r.txt") + " --nu 0.5 --d 3 --json", env);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["K_source"], "paper");
+  EXPECT_EQ(j["K"].get<double>(), 0.2);
+  EXPECT_NE(j["K_note"].get<std::string>().find("cal.json"), std::string::npos) << j["K_note"];
+  EXPECT_EQ(hgrid_run("recommend " + path("r.txt") + " --nu 0.5 --d 3 --K auto", env).status, 2);
+}
+
 /// `hgrid model --radii` takes nu and d from the file (no silent 0.7) and
 /// reads every format.
 TEST_F(Recommend, ModelRadiiTakesNuAndDFromTheFile) {

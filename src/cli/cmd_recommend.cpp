@@ -30,7 +30,7 @@ struct RecommendOptions {
 constexpr const char* kJsonKeys =
     "--json keys: file, format (hdf5|table|lammps_data|lammps_dump), n, d, r_min, r_max, omega (r_max/r_min), "
     "nu, nu_source (box|given), box (side lengths or null), boundary, K, K_source (given|calibration|paper), "
-    "calibration_path, search, levels, sizes (exact cell sizes, file's unit), sizes_pasted (rounded up to 6 digits, "
+    "calibration_path, K_note (why a stored calibration was not used, or empty), search, levels, sizes (exact cell sizes, file's unit), sizes_pasted (rounded up to 6 digits, "
     "as in the settings), fraction_per_level, particles_per_cell, T_over_N, T_cd_over_N (overlap tests), "
     "T_ca_over_N (cell accesses), linked_cell_size (2 r_max), linked_cell_T_over_N, speedup "
     "(linked_cell_T_over_N / T_over_N), lammps (input lines), mercurydpm (code lines). T = tests + K accesses.";
@@ -39,7 +39,9 @@ std::string k_text(const KChoice& k) {
   switch (k.source) {
     case KSource::given: return "given";
     case KSource::calibration: return "this machine's calibration, " + k.calibration_path;
-    case KSource::paper: return "the paper's value; no calibration at " + k.calibration_path + "; `hgrid calibrate` measures one";
+    case KSource::paper:
+      if (!k.note.empty()) return "the paper's value; the stored calibration was not used: " + k.note;
+      return "the paper's value; no calibration at " + k.calibration_path + "; `hgrid calibrate` measures one";
   }
   return "";
 }

@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "experiment/calibration.hpp"
+#include "grid/error.hpp"
 
 namespace hgrid {
 
@@ -22,8 +23,12 @@ KChoice choose_K(const std::string& given, const std::string& field) {
     c.K = resolve_K(given, field);
     c.source = given == "auto" ? KSource::calibration : KSource::given;
   } else if (std::error_code ec; std::filesystem::exists(c.calibration_path, ec)) {
-    c.K = calibrated_K(field);
-    c.source = KSource::calibration;
+    try {
+      c.K = calibrated_K(field);
+      c.source = KSource::calibration;
+    } catch (const InputError& e) {
+      c.note = e.what();
+    }
   }
   return c;
 }

@@ -14,6 +14,7 @@ std::string recommendation_json(const Recommendation& r, const KChoice& k, Searc
   j["K"] = k.K;
   j["K_source"] = to_string(k.source);
   j["calibration_path"] = k.calibration_path;
+  j["K_note"] = k.note;
   j["search"] = to_string(search);
   j["levels"] = r.levels();
   j["sizes"] = r.sizes;

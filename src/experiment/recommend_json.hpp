@@ -8,7 +8,7 @@
 
 namespace hgrid {
 
-/// Keys: r_min, r_max, omega, K, K_source, calibration_path, search, levels,
+/// Keys: r_min, r_max, omega, K, K_source, calibration_path, K_note, search, levels,
 /// sizes, sizes_pasted, fraction_per_level, particles_per_cell, T_over_N,
 /// T_cd_over_N, T_ca_over_N, linked_cell_size, linked_cell_T_over_N, speedup,
 /// lammps (with `skin`), mercurydpm.
