@@ -214,4 +214,35 @@ TEST(TimeModel, CostTimeWithoutCalibrationExits2NamingCost) {
   fs::remove(pk);
 }
 
+TEST(TimeModel, RecommendUsesTheCalibrationsTimeModel) {
+  const fs::path dir = fs::temp_directory_path() / ("hgridlab_recommend_time_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path cal = dir / "cal.json", pk = dir / "p.h5";
+  Calibration c;
+  c.K = 1.2, c.c_cell = 2e-9, c.c_test = 1.6e-9, c.points = 30, c.preset = "test";
+  TimeModelFit t;
+  t.coef.query = {20e-9, 5e-9, 2e-9, 3e-9, 8e-9, 15e-9, 4e-9, 6e-9, 10e-9, 7e-9};
+  t.coef.build = {20e-9, 5e-9, 9e-9, 2e-6, 30e-9, 4e-9};
+  c.time[1] = t;
+  save_calibration(c, cal.string());
+  const std::string env = "HGRID_CALIBRATION='" + cal.string() + "'";
+  ASSERT_EQ(hgrid_run("generate --d 3 --n 3000 --nu 0.4 --alpha -3 --omega 20 --seed 4 --out " + pk.string(), env).status, 0);
+  const Result def = hgrid_run("recommend " + pk.string() + " --json", env);
+  ASSERT_EQ(def.status, 0) << def.err;
+  const auto j = nlohmann::json::parse(def.out);
+  EXPECT_EQ(j["cost"], "time");
+  EXPECT_EQ(j["K_source"], "calibration");
+  EXPECT_GT(j["speedup_seconds"].get<double>(), 0.0);
+  EXPECT_GT(j["predicted_seconds_query"].get<double>(), 0.0);
+  // The same sizes as --cost time in count, whose sizes are the same search.
+  const Result cnt = hgrid_run("recommend " + pk.string() + " --json --cost count", env);
+  ASSERT_EQ(cnt.status, 0) << cnt.err;
+  const auto jc = nlohmann::json::parse(cnt.out);
+  EXPECT_EQ(jc["cost"], "count");
+  EXPECT_TRUE(jc["speedup_seconds"].is_null());
+  // A given K without --cost: the count optimum for that K.
+  EXPECT_EQ(nlohmann::json::parse(hgrid_run("recommend " + pk.string() + " --json --K 0.2", env).out)["cost"], "count");
+  fs::remove_all(dir);
+}
+
 }  // namespace

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/common.hpp"
+#include "experiment/calibration.hpp"
 #include "experiment/k_choice.hpp"
 #include "experiment/recommend.hpp"
 #include "experiment/recommend_json.hpp"
@@ -19,7 +20,7 @@ namespace hgrid::cli {
 namespace {
 
 struct RecommendOptions {
-  std::string file, K, search = "topdown";
+  std::string file, K, search = "topdown", cost = "auto";
   std::optional<double> nu;
   std::optional<int> d;
   double skin = 0;
@@ -33,7 +34,10 @@ constexpr const char* kJsonKeys =
     "calibration_path, K_note (why a stored calibration was not used, or empty), search, levels, sizes (exact cell sizes, file's unit), sizes_pasted (rounded up to 6 digits, "
     "as in the settings), fraction_per_level, particles_per_cell, T_over_N, T_cd_over_N (overlap tests), "
     "T_ca_over_N (cell accesses), linked_cell_size (2 r_max), linked_cell_T_over_N, speedup "
-    "(linked_cell_T_over_N / T_over_N), lammps (input lines), mercurydpm (code lines). T = tests + K accesses.";
+    "(linked_cell_T_over_N / T_over_N), cost (count|time: what the sizes minimise), predicted_seconds_build, "
+    "predicted_seconds_query, linked_cell_predicted_seconds (build + query), speedup_seconds (the last four: "
+    "this machine's time model, null with cost count), lammps (input lines), mercurydpm (code lines). "
+    "T = tests + K accesses.";
 
 std::string k_text(const KChoice& k) {
   switch (k.source) {
@@ -62,8 +66,15 @@ void print_text(const RecommendOptions& o, const ParticleSet& s, const FileInput
     std::printf("%7d %14.6g %11.4g%% %12.4g\n", h + 1, r.sizes[h], 100 * r.model.P[h], r.model.m[h]);
   std::printf("predicted T/N = %.4g (overlap tests %.4g + K x cell accesses %.4g, per particle)\n", r.model.T_over_N,
               r.model.T_cd_over_N, r.model.T_ca_over_N);
-  std::printf("linked cell (one level of size 2 r_max = %g): T/N = %.4g; predicted speed-up %.4gx\n\n",
+  std::printf("linked cell (one level of size 2 r_max = %g): T/N = %.4g; predicted speed-up %.4gx\n",
               r.linked_cell_size, r.linked_cell.T_over_N, r.speedup());
+  if (r.seconds)
+    std::printf("sizes minimise this machine's predicted seconds (time model): build + query %.4g s, linked cell "
+                "%.4g s, speed-up %.4gx\n",
+                r.seconds->total(), r.linked_cell_seconds->total(), r.speedup_seconds());
+  else
+    std::printf("sizes minimise T (no time model used: `hgrid calibrate` measures one, or give --cost time)\n");
+  std::printf("\n");
   std::printf("LAMMPS (atom_style sphere, granular pair style; sizes rounded up to %d digits):\n", kPasteDigits);
   for (const auto& line : lammps_settings(r.sizes, o.skin)) std::printf("  %s\n", line.c_str());
   std::printf("\nMercuryDPM:\n");
@@ -90,7 +101,17 @@ void run_recommend(const RecommendOptions& o) {
   const ParticleSet s = read_particles(o.file, Isolation::child_process);
   const FileInputs in = file_inputs(s, o.file, o.d, o.nu);
   const KChoice k = choose_K(o.K);
-  const Recommendation r = recommend_cell_sizes(s.radii, ModelParams{in.d, in.nu, k.K, search});
+  // The time model: asked for, or by default when the calibration that gave
+  // K has one for this dimension.
+  std::optional<TimeModelUse> time;
+  const bool want_time = o.cost == "time" || (o.cost == "auto" && k.source == KSource::calibration);
+  if (o.cost != "auto") parse_cost(o.cost);  // refuses anything but count and time
+  if (want_time) {
+    const std::optional<Calibration> cal = stored_calibration();
+    if (cal && cal->time_model(in.d)) time = TimeModelUse{cal->time_model(in.d)->coef, double(s.size())};
+    else if (o.cost == "time") time = TimeModelUse{calibrated_time_model(in.d, "cost").coef, double(s.size())};
+  }
+  const Recommendation r = recommend_cell_sizes(s.radii, ModelParams{in.d, in.nu, k.K, search}, time);
   if (o.json) print_json(o, s, in, k, r, search);
   else print_text(o, s, in, k, r, search);
 }
@@ -127,6 +148,10 @@ void register_recommend_commands(CLI::App& app) {
   sub->add_option("--d", o->d, "dimension, 2 or 3 (default: from the file)");
   sub->add_option("--K", o->K, std::string(kKHelp) + " (default: the stored calibration if any, else 0.2)");
   sub->add_option("--search", o->search, "topdown | bottomup")->capture_default_str();
+  sub->add_option("--cost", o->cost,
+                  "what the sizes minimise: count (T = tests + K accesses), time (this machine's predicted seconds, "
+                  "from `hgrid calibrate`), or auto (time when the calibration used for K has a time model)")
+      ->capture_default_str();
   sub->add_option("--skin", o->skin, "LAMMPS neighbor skin to print (the file's unit)")->capture_default_str();
   sub->add_flag("--json", o->json, "print JSON (keys below)");
   sub->footer(kJsonKeys);

@@ -9,7 +9,8 @@
 
 namespace hgrid {
 
-Recommendation recommend_cell_sizes(const std::vector<double>& radii, const ModelParams& p) {
+Recommendation recommend_cell_sizes(const std::vector<double>& radii, const ModelParams& p,
+                                    const std::optional<TimeModelUse>& time) {
   validate(p);
   if (radii.empty()) throw InputError("radii", "no particles to choose cell sizes for");
   for (double r : radii)
@@ -20,8 +21,13 @@ Recommendation recommend_cell_sizes(const std::vector<double>& radii, const Mode
   std::vector<double> scaled(radii);
   for (double& r : scaled) r /= out.r_min;
   const Empirical dist(std::move(scaled));
-  const SizeChoice choice = choose_cell_sizes(dist, p, CellMethod::optimal);
-  const std::vector<double> unit_sizes = sizes_for_grid(choice.sizes, 2 * dist.r_max());
+  const std::vector<double> unit_sizes =
+      time ? time_optimal_sizes(dist, p, time->coef, time->n).sizes
+           : sizes_for_grid(choose_cell_sizes(dist, p, CellMethod::optimal).sizes, 2 * dist.r_max());
+  if (time) {
+    out.seconds = predict_seconds(time->coef, expected_time_terms(dist, p, unit_sizes, time->n));
+    out.linked_cell_seconds = predict_seconds(time->coef, expected_time_terms(dist, p, {2 * dist.r_max()}, time->n));
+  }
   out.model = evaluate_model(dist, p, unit_sizes);
   out.linked_cell = evaluate_model(dist, p, {2 * dist.r_max()});
   for (double s : unit_sizes) out.sizes.push_back(s * out.r_min);

@@ -2,11 +2,20 @@
 // Bottom-Up) grid for a list of radii, in the radii's own unit, with the
 // predicted cost and the predicted speed-up over the single-level linked cell.
 #pragma once
+#include <optional>
 #include <vector>
 
 #include "model/model.hpp"
+#include "model/time_model.hpp"
 
 namespace hgrid {
+
+/// With a machine's time model (docs/MODEL.md section 9): its coefficients
+/// for the recommendation's dimension and the number of particles.
+struct TimeModelUse {
+  TimeCoefficients coef;
+  double n = 0;
+};
 
 struct Recommendation {
   std::vector<double> sizes;  // cell sizes s_1..s_L, ready for GridParams (radii's unit)
@@ -17,12 +26,18 @@ struct Recommendation {
   int levels() const { return static_cast<int>(sizes.size()); }
   /// Predicted T/N of the linked cell over that of `sizes`.
   double speedup() const { return linked_cell.T_over_N / model.T_over_N; }
+  /// With a time model: the sizes minimise its predicted seconds of one
+  /// build + query, and these are its predictions for them and the linked cell.
+  std::optional<PredictedSeconds> seconds, linked_cell_seconds;
+  double speedup_seconds() const { return seconds ? linked_cell_seconds->total() / seconds->total() : 0; }
 };
 
-/// The optimal sizes (best number of levels L*) for the empirical
+/// The optimal sizes (best number of levels L*, or with `time` the
+/// time-optimal sizes, time_optimal_sizes) for the empirical
 /// distribution of `radii` (> 0, finite; any unit) and p (d, nu, K, search).
 /// Computed in units of r_min and scaled back, so that the same radii in
 /// another unit give the same sizes in that unit. Throws InputError.
-Recommendation recommend_cell_sizes(const std::vector<double>& radii, const ModelParams& p);
+Recommendation recommend_cell_sizes(const std::vector<double>& radii, const ModelParams& p,
+                                    const std::optional<TimeModelUse>& time = std::nullopt);
 
 }  // namespace hgrid

@@ -27,6 +27,11 @@ std::string recommendation_json(const Recommendation& r, const KChoice& k, Searc
   j["linked_cell_size"] = r.linked_cell_size;
   j["linked_cell_T_over_N"] = r.linked_cell.T_over_N;
   j["speedup"] = r.speedup();
+  j["cost"] = r.seconds ? "time" : "count";
+  j["predicted_seconds_build"] = r.seconds ? nlohmann::json(r.seconds->build) : nlohmann::json();
+  j["predicted_seconds_query"] = r.seconds ? nlohmann::json(r.seconds->query) : nlohmann::json();
+  j["linked_cell_predicted_seconds"] = r.seconds ? nlohmann::json(r.linked_cell_seconds->total()) : nlohmann::json();
+  j["speedup_seconds"] = r.seconds ? nlohmann::json(r.speedup_seconds()) : nlohmann::json();
   j["lammps"] = lammps_settings(r.sizes, skin);
   j["mercurydpm"] = mercurydpm_settings(r.sizes, search);
   return j.dump();
