@@ -1,5 +1,6 @@
 // hgrid generate: packings for the experiments (random or excluded-volume
 // placement), written as HDF5; also registers `hgrid info` (cmd_info.cpp).
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -30,14 +31,16 @@ void run_generate(GenerateOptions o) {
     throw InputError("equilibrate", "only applies to --placement excluded");
   Packing p;
   std::string path = o.out;
+  bool reused = false;  // --cache and the packing was there already
   if (!o.cache_dir.empty()) {
     path = packing_cache_path(o.spec, o.cache_dir);
+    reused = std::filesystem::exists(path);
     p = cached_packing(o.spec, o.cache_dir);
   } else {
     p = generate_packing(o.spec);
     write_packing(o.out, p);
   }
-  std::cerr << "hgrid generate: wrote " << path << " (n = " << p.size() << ", nu = " << p.num_attrs["nu_achieved"]
+  std::cerr << "hgrid generate: " << (reused ? "reused " : "wrote ") << path << " (n = " << p.size() << ", nu = " << p.num_attrs["nu_achieved"]
             << ", max rel. overlap (-1: not computed) = "
             << (p.num_attrs.count("max_rel_overlap") ? p.num_attrs["max_rel_overlap"] : -1.0) << ", seed = " << o.spec.seed << ")\n";
   if (!o.cache_dir.empty()) std::cout << path << "\n";
