@@ -177,30 +177,31 @@ Calibration load_calibration(const std::string& path) {
   return c;
 }
 
-double calibrated_K(const std::string& field) {
+namespace {
+
+/// The stored calibration, or InputError(field) saying what needed it
+/// (`purpose`), why it cannot be read, and how to make one.
+Calibration stored_or_explain(const std::string& field, const std::string& purpose) {
   const std::string path = calibration_path();
   try {
-    return load_calibration(path).K;
+    return load_calibration(path);
   } catch (const InputError& e) {
     const std::string why = std::string(e.what()).substr(std::string("calibration: ").size());
-    throw InputError(field, "'auto' means the K measured on this machine, but " + why +
-                                "; run `hgrid calibrate` first (it writes " + path +
+    throw InputError(field, purpose + ", but " + why + "; run `hgrid calibrate` first (it writes " + path +
                                 "; HGRID_CALIBRATION overrides the path)");
   }
 }
 
+}  // namespace
+
+double calibrated_K(const std::string& field) {
+  return stored_or_explain(field, "'auto' means the K measured on this machine").K;
+}
+
 TimeModelFit calibrated_time_model(int d, const std::string& field) {
-  const std::string path = calibration_path();
-  Calibration c;
-  try {
-    c = load_calibration(path);
-  } catch (const InputError& e) {
-    const std::string why = std::string(e.what()).substr(std::string("calibration: ").size());
-    throw InputError(field, "the time model is this machine's, but " + why + "; run `hgrid calibrate` first (it writes " +
-                                path + "; HGRID_CALIBRATION overrides the path)");
-  }
+  const Calibration c = stored_or_explain(field, "the time model is this machine's");
   if (!c.time_model(d))
-    throw InputError(field, "the calibration at '" + path + "' has no " + std::to_string(d) +
+    throw InputError(field, "the calibration at '" + calibration_path() + "' has no " + std::to_string(d) +
                                 "D time model (written before it existed); run `hgrid calibrate` again");
   return *c.time_model(d);
 }

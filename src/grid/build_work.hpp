@@ -8,20 +8,24 @@
 #include <bit>
 #include <cstdint>
 
+#include "grid/detail/levels.hpp"
+
 namespace hgrid {
 
 struct LevelSortWork {
+  int shift = 0;              // low key bits sorted inside a coarse bucket (a bucket is 2^shift keys)
   int passes = 0;             // radix passes over each of the level's particles
   std::uint64_t buckets = 0;  // coarse buckets of the level
 };
 
-/// For a level of `cells` cells in a grid of `n` particles.
+/// For a level of `cells` cells in a grid of `n` particles: the build's own
+/// rule (HGrid::build takes its shifts and bucket counts from here).
 inline LevelSortWork level_sort_work(std::uint64_t cells, std::uint64_t n) {
-  constexpr std::uint64_t kCoarseBucket = 4096;  // grid/detail/levels.hpp
-  constexpr int kBitsPerPass = 8;
-  const int coarse_bits = static_cast<int>(std::bit_width(n / kCoarseBucket));
-  const int shift = std::max(0, static_cast<int>(std::bit_width(std::max<std::uint64_t>(cells, 1) - 1)) - coarse_bits);
-  return {(shift + kBitsPerPass - 1) / kBitsPerPass, ((std::max<std::uint64_t>(cells, 1) - 1) >> shift) + 1};
+  constexpr int kBitsPerPass = 8;  // grid/detail/radix.hpp
+  const int coarse_bits = static_cast<int>(std::bit_width(n / detail::kCoarseBucket));
+  const std::uint64_t last = std::max<std::uint64_t>(cells, 1) - 1;
+  const int shift = std::max(0, static_cast<int>(std::bit_width(last)) - coarse_bits);
+  return {shift, (shift + kBitsPerPass - 1) / kBitsPerPass, (last >> shift) + 1};
 }
 
 /// Summed over the levels: particle-passes and bucket-passes of the sort.

@@ -96,9 +96,11 @@ TimeTerms expected_time_terms(const Distribution& dist, const ModelParams& p, co
   double checks = n * m.T_cd_over_N;
   const double half_stencil = d == 2 ? 4 : 13;  // (3^d - 1) / 2 neighbour cells
   std::vector<char> ranked(L);
+  std::vector<double> cells_of(L);  // box volume / s_h^d
+  for (int h = 0; h < L; ++h) cells_of[h] = n * vp / (p.nu * std::pow(s[h], d));
   for (int h = 0; h < L; ++h) {
     const double nh = n * m.P[h];
-    const double cells = n * vp / (p.nu * std::pow(s[h], d));  // box volume / s_h^d
+    const double cells = cells_of[h];
     ranked[h] = cells <= kRankCellsPerParticle * nh + kRankMinCells;
     const double occupied = nh > 0 ? cells * -std::expm1(-nh / cells) : 0.0;  // Poisson occupancy
     t.occupied_cells += occupied;
@@ -145,7 +147,7 @@ TimeTerms expected_time_terms(const Distribution& dist, const ModelParams& p, co
       if (!ranked[j]) {  // a hashed level's cells are tested as ranges, one by one: runs
         t.probes += nh * box;
         t.run_checks += pair_checks;
-        t.runs += nh * box * at_least(nj / (n * vp / (p.nu * std::pow(s[j], d))), 1);
+        t.runs += nh * box * at_least(nj / cells_of[j], 1);
         continue;
       }
       // n int over level h of (2 + 2r/s_j)^(d-1) f(r) dr, expanded in moments.
@@ -156,7 +158,7 @@ TimeTerms expected_time_terms(const Distribution& dist, const ModelParams& p, co
       }
       t.rows += n * rows;
       // A row of the box holds box / rows cells, each m_j particles on average.
-      const double per_row = rows > 0 ? box * m.P[h] / rows * (nj / (n * vp / (p.nu * std::pow(s[j], d)))) : 0;
+      const double per_row = rows > 0 ? box * m.P[h] / rows * (nj / cells_of[j]) : 0;
       if (per_row > 0) {
         t.run_checks += pair_checks * run_part(per_row) / per_row;
         t.runs += n * rows * run_prob(per_row);

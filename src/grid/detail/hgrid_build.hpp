@@ -63,10 +63,10 @@ void HGrid<D, B>::build(std::span<const Sphere<D>> spheres, Scratch& ws) {
   auto& coarse_base = ws.coarse_base;
   shift.assign(L, 0);
   coarse_base.assign(L + 1, 0);
-  const int coarse_bits = static_cast<int>(std::bit_width(N / detail::kCoarseBucket));
   for (int h = 0; h < L; ++h) {
-    shift[h] = std::max(0, static_cast<int>(std::bit_width(levels_[h].cells() - 1)) - coarse_bits);
-    coarse_base[h + 1] = coarse_base[h] + static_cast<std::uint32_t>(((levels_[h].cells() - 1) >> shift[h]) + 1);
+    const LevelSortWork w = level_sort_work(levels_[h].cells(), N);
+    shift[h] = w.shift;
+    coarse_base[h + 1] = coarse_base[h] + static_cast<std::uint32_t>(w.buckets);
   }
   // Cell key (Eq. 1) on its level of insertion, and coarse bucket, of a
   // (wrapped) particle.
