@@ -54,7 +54,8 @@ figures: build
 	if [ -f plots/dpm.sh ]; then bash plots/dpm.sh $(SCALE); fi
 
 # Measure this machine's K (stored for --K auto), then the figure of whether
-# it pays: paper_figs/calibration.png (~2 min; not part of `make figures`).
+# it pays: paper_figs/calibration.png and paper_figs/time-model.png (48
+# packings, 10 rounds: ~25 min; not part of `make figures`).
 calibrate: build
 	$(BUILD)/hgrid calibrate
 
