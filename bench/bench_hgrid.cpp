@@ -8,6 +8,7 @@
 
 #include <map>
 #include <memory>
+#include <vector>
 
 #include "grid/brute_force.hpp"
 #include "model/cell_sizes.hpp"
@@ -91,8 +92,9 @@ void BM_HGridOptimalCounted(benchmark::State& state) {
 /// build-plus-query time above into its two parts.
 void BM_HGridBuild(benchmark::State& state) {
   const auto& f = fixture(static_cast<std::size_t>(state.range(0)));
+  const int T = static_cast<int>(state.range(1));  // threads
   for (auto _ : state) {
-    const Grid grid(f.spheres, f.box, GridParams{f.optimal, Search::top_down});
+    const Grid grid(f.spheres, f.box, GridParams{f.optimal, Search::top_down, T});
     benchmark::DoNotOptimize(grid.size());
   }
   set_per_particle(state, static_cast<double>(f.spheres.size()));
@@ -115,6 +117,29 @@ void BM_HGridRebuild(benchmark::State& state) {
   state.counters["pairs"] = static_cast<double>(pairs);
   state.counters["workspace_bytes_per_particle"] = static_cast<double>(grid.workspace_bytes()) / n;
 }
+/// Build plus query on T threads (the second argument; 0 = all cores), the
+/// callback counting per thread (grid/threads.hpp). Wall time: the ratio of
+/// T = 1 to T = 2 at N = 10^6 in one run is the speed-up on two cores.
+void BM_HGridThreads(benchmark::State& state) {
+  const auto& f = fixture(static_cast<std::size_t>(state.range(0)));
+  const int T = static_cast<int>(state.range(1));
+  struct alignas(64) Slot {
+    std::uint64_t n = 0;
+  };
+  std::vector<Slot> found(static_cast<std::size_t>(resolve_threads(T)));
+  std::uint64_t pairs = 0;
+  for (auto _ : state) {
+    const Grid grid(f.spheres, f.box, GridParams{f.optimal, Search::top_down, T});
+    for (auto& s : found) s.n = 0;
+    grid.query<Search::top_down>([&found](int t, std::uint32_t, std::uint32_t) { ++found[t].n; });
+    pairs = 0;
+    for (const auto& s : found) pairs += s.n;
+    benchmark::DoNotOptimize(pairs);
+  }
+  set_per_particle(state, static_cast<double>(f.spheres.size()));
+  state.counters["pairs"] = static_cast<double>(pairs);
+  state.counters["threads"] = resolve_threads(T);
+}
 void BM_LinkedCell(benchmark::State& state) { run_grid<Uncounted>(state, {2 * kOmega}); }
 
 void BM_BruteForce(benchmark::State& state) {
@@ -132,9 +157,10 @@ void BM_BruteForce(benchmark::State& state) {
 
 BENCHMARK(BM_HGridOptimal)->Arg(10'000)->Arg(100'000)->Arg(1'000'000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_HGridOptimalCounted)->Arg(10'000)->Arg(100'000)->Arg(1'000'000)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_HGridBuild)->Arg(1'000'000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HGridBuild)->Args({1'000'000, 1})->Args({1'000'000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_HGridRebuild)->Arg(10'000)->Arg(100'000)->Arg(1'000'000)->Unit(benchmark::kMillisecond);
 // One level of 2 r_max: O(N m) with m ~ hundreds of particles per cell; 10^6 takes minutes.
+BENCHMARK(BM_HGridThreads)->Args({1'000'000, 1})->Args({1'000'000, 2})->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_LinkedCell)->Arg(10'000)->Arg(100'000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_BruteForce)->Arg(10'000)->Unit(benchmark::kMillisecond);
 

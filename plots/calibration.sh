@@ -53,7 +53,7 @@ for placement in excluded random; do
       for k in $order; do  # time: sizes minimising the time model's predicted seconds
         cost=count; kk=$k
         if [ "$k" = time ]; then cost=time; kk=auto; fi
-        "$hgrid" count "$f" --cells optimal --K "$kk" --cost "$cost" --repeat "$repeat" --json |
+        "$hgrid" count "$f" --cells optimal --K "$kk" --cost "$cost" --repeat "$repeat" --threads 1 --json |
           jq -r --arg r "$round" --arg pl "$placement" --arg w "$omega" --arg nu "$nu" --arg kl "$k" --argjson kc "$K" \
             '[$r, $pl, $w, $nu, .n, (if $kl == "auto" then "calibrated" elif $kl == "time" then "time" else "0.2" end), .K, .levels,
               .cell_accesses, .narrow_phase_checks, .contacts,

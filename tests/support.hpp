@@ -1,5 +1,7 @@
 // Seeded test packings and pair-set helpers shared by the tests.
 #pragma once
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -73,11 +75,13 @@ std::vector<Pair> brute_pairs(const Scene<D>& s) {
   return out;
 }
 
-/// The pairs of a grid, sorted (NOT deduplicated: duplicates must show), and its counters.
+/// The pairs of a grid, sorted (NOT deduplicated: duplicates must show), and
+/// its counters; the query on one thread, whatever the grid's params say.
 template <Search S, class Count = Uncounted, int D, Boundary B>
 std::pair<std::vector<Pair>, Counters> query_pairs(const HGrid<D, B>& grid) {
   std::vector<Pair> out;
-  const Counters c = grid.template query<S, Count>([&](std::uint32_t i, std::uint32_t j) { out.emplace_back(i, j); });
+  const Counters c =
+      grid.template query<S, Count>([&](std::uint32_t i, std::uint32_t j) { out.emplace_back(i, j); }, 1);
   std::sort(out.begin(), out.end());
   return {out, c};
 }
@@ -87,6 +91,27 @@ template <int D, Boundary B, Search S, class Count = Uncounted>
 std::pair<std::vector<Pair>, Counters> grid_pairs(const Scene<D>& s, const std::vector<double>& sizes) {
   const HGrid<D, B> grid(std::span<const Sphere<D>>(s.spheres), s.box, GridParams{sizes, S});
   return query_pairs<S, Count>(grid);
+}
+
+/// Every count of two queries equal (gtest checks).
+inline void expect_same_counters(const Counters& a, const Counters& b) {
+  EXPECT_EQ(a.cell_accesses, b.cell_accesses);
+  EXPECT_EQ(a.narrow_phase_checks, b.narrow_phase_checks);
+  EXPECT_EQ(a.contacts, b.contacts);
+  EXPECT_EQ(a.levels, b.levels);
+  EXPECT_EQ(a.particles_per_level, b.particles_per_level);
+  EXPECT_EQ(a.accesses_by_level, b.accesses_by_level);
+  EXPECT_EQ(a.checks_by_level, b.checks_by_level);
+  EXPECT_EQ(a.occupied_cells, b.occupied_cells);
+  EXPECT_EQ(a.searches, b.searches);
+  EXPECT_EQ(a.rows, b.rows);
+  EXPECT_EQ(a.scanned, b.scanned);
+  EXPECT_EQ(a.probes, b.probes);
+  EXPECT_EQ(a.list_checks, b.list_checks);
+  EXPECT_EQ(a.runs, b.runs);
+  EXPECT_EQ(a.occupied_by_level, b.occupied_by_level);
+  EXPECT_EQ(a.searches_by_level, b.searches_by_level);
+  EXPECT_EQ(a.rows_by_level, b.rows_by_level);
 }
 
 /// A scene as a Packing with boundary b.

@@ -68,6 +68,15 @@ TEST_F(PackingFiles, Csv) {
 
 using Cli = TempDir;
 
+/// The lines of a command's output, sorted (pairs come in any order).
+std::vector<std::string> sorted_lines(const std::string& t) {
+  std::vector<std::string> v;
+  std::istringstream ss(t);
+  for (std::string l; std::getline(ss, l);) v.push_back(l);
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
 TEST_F(Cli, PairsEqualBruteForce) {
   const auto s = random_scene<3>(3000, 0.5, -3, 30, Boundary::periodic, 11);
   write_packing(path("p.h5"), packing_from(s, Boundary::periodic));
@@ -75,15 +84,37 @@ TEST_F(Cli, PairsEqualBruteForce) {
   const Result brute = hgrid_run("pairs " + path("p.h5") + " --brute");
   ASSERT_EQ(grid.status, 0) << grid.err;
   ASSERT_EQ(brute.status, 0) << brute.err;
-  auto lines = [](const std::string& t) {
-    std::vector<std::string> v;
-    std::istringstream ss(t);
-    for (std::string l; std::getline(ss, l);) v.push_back(l);
-    std::sort(v.begin(), v.end());
-    return v;
-  };
-  EXPECT_GT(lines(brute.out).size(), 100u);
-  EXPECT_EQ(lines(grid.out), lines(brute.out));
+  EXPECT_GT(sorted_lines(brute.out).size(), 100u);
+  EXPECT_EQ(sorted_lines(grid.out), sorted_lines(brute.out));
+}
+
+// --threads: the same pair set (in another order) and the same counts for
+// 1, 2, 3 and 8 threads; bad values get one line and status 2.
+TEST_F(Cli, ThreadsGiveTheSameResults) {
+  const auto s = random_scene<3>(12000, 0.5, -3, 20, Boundary::periodic, 12);
+  write_packing(path("p.h5"), packing_from(s, Boundary::periodic));
+  const Result brute = hgrid_run("pairs " + path("p.h5") + " --brute");
+  ASSERT_EQ(brute.status, 0) << brute.err;
+  nlohmann::json one;
+  for (const int t : {1, 2, 3, 8}) {
+    SCOPED_TRACE("threads = " + std::to_string(t));
+    const Result p = hgrid_run("pairs " + path("p.h5") + " --sizes 2.5,8,40.001 --threads " + std::to_string(t));
+    ASSERT_EQ(p.status, 0) << p.err;
+    EXPECT_EQ(sorted_lines(p.out), sorted_lines(brute.out));
+    const Result c = hgrid_run("count " + path("p.h5") + " --cells optimal --json --threads " + std::to_string(t));
+    ASSERT_EQ(c.status, 0) << c.err;
+    auto j = nlohmann::json::parse(c.out);
+    EXPECT_EQ(j["threads"], t);
+    for (const char* k : {"threads", "seconds_build", "seconds_query"}) j.erase(k);
+    if (t == 1) one = j;
+    EXPECT_EQ(j, one);
+  }
+  for (const char* bad : {"-1", "1025", "two"}) {
+    const Result r = hgrid_run("count " + path("p.h5") + " --sizes 40.001 --threads " + bad);
+    EXPECT_EQ(r.status, 2) << bad;
+    EXPECT_NE(r.err.find("threads"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty());
+  }
 }
 
 TEST_F(Cli, CountJson) {

@@ -6,6 +6,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "cli/common.hpp"
 #include "packing/packing_model.hpp"
@@ -56,6 +57,7 @@ struct GridOptions {
   std::string cost = "count";
   std::string cells;  // a cell-size method, parsed in resolve()
   SizeRequest request;
+  int threads = 0;  // 0: all cores (OMP_NUM_THREADS)
 };
 
 void add_grid_options(CLI::App* sub, GridOptions& o) {
@@ -74,11 +76,13 @@ void add_grid_options(CLI::App* sub, GridOptions& o) {
       ->default_val("count");
   sub->add_flag("--excluded-sizes", o.request.excluded_model,
                 "with --cells optimal: refine the sizes under the excluded-volume model (hard-sphere packings, 3D)");
+  add_threads_option(sub, o.threads);
 }
 
 GridParams resolve(const GridOptions& o, const Packing& p, double K) {
   GridParams g;
   g.search = parse_search(o.search);
+  g.threads = check_threads(o.threads);
   if (!o.sizes.empty()) {
     g.sizes = parse_list(o.sizes, "sizes");
   } else if (!o.cells.empty()) {
@@ -101,12 +105,15 @@ void run_pairs(const GridOptions& o, bool brute) {
     constexpr int D = decltype(dim)::value;
     constexpr Boundary B = decltype(bnd)::value;
     const auto spheres = p.spheres<D>();
-    PairWriter out;
     if (brute) {
+      PairWriter out;
       brute_force_pairs<D, B>(std::span<const Sphere<D>>(spheres), p.extent<D>(), out);
     } else {
+      // One writer per thread; each writes whole lines, so the lines of
+      // several threads never mix (their order does differ between runs).
       const HGrid<D, B> grid(spheres, p.extent<D>(), g);
-      grid.for_each_pair(out);
+      std::vector<PairWriter> out(static_cast<std::size_t>(resolve_threads(g.threads)));
+      grid.for_each_pair([&](int t, std::uint32_t i, std::uint32_t j) { out[static_cast<std::size_t>(t)](i, j); });
     }
   });
 }
@@ -121,6 +128,7 @@ nlohmann::json count_json(const Packing& p, const GridParams& g, const std::vect
   j["boundary"] = to_string(p.boundary);
   j["packing_fraction"] = p.packing_fraction();
   j["search"] = to_string(g.search);
+  j["threads"] = resolve_threads(g.threads);
   j["K"] = K;
   j["sizes_requested"] = g.sizes;
   j["sizes"] = used;
@@ -189,7 +197,7 @@ void add_predicted_seconds(nlohmann::json& j, const Packing& p, const std::vecto
                       " (run `hgrid calibrate`)";
     return;
   }
-  j["time_model"] = "calibration of " + cal->date + " on " + cal->machine;
+  j["time_model"] = "calibration of " + cal->date + " on " + cal->machine + " (seconds on one thread)";
   const Empirical dist(p.radii);
   const ModelParams mp{p.d, p.packing_fraction(), K, search};
   const PredictedSeconds e = predict_seconds(t->coef, expected_time_terms(dist, mp, used, double(p.size())));

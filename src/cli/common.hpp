@@ -35,6 +35,13 @@ struct FileInputs {
 };
 FileInputs file_inputs(const ParticleSet& s, const std::string& file, std::optional<int> d, std::optional<double> nu);
 
+/// The --threads option of a command that searches (default 0: all cores,
+/// OMP_NUM_THREADS when set), and its check: 0, or 1 to kMaxThreads, else an
+/// InputError naming threads. Returns the value.
+inline constexpr int kMaxThreads = 1024;
+void add_threads_option(CLI::App* sub, int& threads);
+int check_threads(int threads);
+
 /// Parse "a,b,c" into doubles; throws hgrid::InputError naming `field`.
 std::vector<double> parse_list(const std::string& text, const std::string& field);
 

@@ -13,6 +13,20 @@
 
 namespace hgrid::cli {
 
+void add_threads_option(CLI::App* sub, int& threads) {
+  sub->add_option("--threads", threads,
+                  "threads of the build and the search: 0 = all cores (OMP_NUM_THREADS when set), or 1 to " +
+                      std::to_string(kMaxThreads) + "; the results are the same for any number")
+      ->default_val(0);
+}
+
+int check_threads(int threads) {
+  if (threads < 0 || threads > kMaxThreads)
+    throw InputError("threads", "must be 0 (all cores) or 1 to " + std::to_string(kMaxThreads) + " (got " +
+                                    std::to_string(threads) + ")");
+  return threads;
+}
+
 std::vector<double> parse_list(const std::string& text, const std::string& field) {
   std::vector<double> out;
   if (text.empty()) throw InputError(field, "empty list");

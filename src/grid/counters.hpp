@@ -45,6 +45,28 @@ struct Counters {
   double cost(double K) const {
     return static_cast<double>(narrow_phase_checks) + K * static_cast<double>(cell_accesses);
   }
+  /// Adds another part of the same query's counts (a thread's), element by
+  /// element; levels and particles per level are the query's, kept as they are.
+  void add(const Counters& o) {
+    cell_accesses += o.cell_accesses;
+    narrow_phase_checks += o.narrow_phase_checks;
+    contacts += o.contacts;
+    occupied_cells += o.occupied_cells;
+    searches += o.searches;
+    rows += o.rows;
+    scanned += o.scanned;
+    probes += o.probes;
+    list_checks += o.list_checks;
+    runs += o.runs;
+    const auto sum = [](std::vector<std::uint64_t>& a, const std::vector<std::uint64_t>& b) {
+      for (std::size_t k = 0; k < a.size() && k < b.size(); ++k) a[k] += b[k];
+    };
+    sum(accesses_by_level, o.accesses_by_level);
+    sum(checks_by_level, o.checks_by_level);
+    sum(occupied_by_level, o.occupied_by_level);
+    sum(searches_by_level, o.searches_by_level);
+    sum(rows_by_level, o.rows_by_level);
+  }
   std::uint64_t particles() const {
     std::uint64_t n = 0;
     for (auto v : particles_per_level) n += v;

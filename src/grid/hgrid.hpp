@@ -5,8 +5,10 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <exception>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "grid/build_work.hpp"
@@ -17,6 +19,7 @@
 #include "grid/error.hpp"
 #include "grid/geometry.hpp"
 #include "grid/params.hpp"
+#include "grid/threads.hpp"
 
 namespace hgrid {
 
@@ -41,12 +44,21 @@ class HGrid {
   void rebuild(std::span<const Sphere<D>> spheres);
 
   /// Hands every overlapping pair (distance < r_i + r_j; minimum image in a
-  /// periodic box) to f(i, j) exactly once, with i < j the input indices.
-  /// Search direction and counting are compile-time policies.
+  /// periodic box) to f(i, j) exactly once, with i < j the input indices,
+  /// on `threads` threads (grid/threads.hpp: 0 = all; the callback contract
+  /// for more than one is stated there). Search direction and counting are
+  /// compile-time policies. The pairs and the counters are the same for any
+  /// number of threads; only the order of the calls differs. A const grid
+  /// may be queried from several threads at once.
   template <Search S, class Count = Uncounted, class F>
-  Counters query(F&& f) const;
+  Counters query(F&& f, int threads) const;
+  /// Same, on the params struct's threads.
+  template <Search S, class Count = Uncounted, class F>
+  Counters query(F&& f) const {
+    return query<S, Count>(std::forward<F>(f), params_.threads);
+  }
 
-  /// Same, with the direction of the params struct.
+  /// Same, with the direction and threads of the params struct.
   template <class Count = Uncounted, class F>
   Counters for_each_pair(F&& f) const {
     return params_.search == Search::top_down ? query<Search::top_down, Count>(f)
@@ -142,17 +154,23 @@ class HGrid {
     detail::UninitVector<std::uint64_t> key_in, key, tkey, k0, tk;
     detail::UninitVector<std::uint32_t> coarse, order, torder, tid, t;
     detail::UninitVector<Sphere<D>> tsph;
-    std::vector<std::uint32_t> cursor, bucket_begin, coarse_base;
-    std::vector<int> shift;
+    std::vector<std::uint32_t> cursor, bucket_begin, coarse_base, cells_before;
+    std::vector<int> shift, level_of;
+    std::vector<double> d_max_of;               // per thread
+    std::vector<std::exception_ptr> error_of;   // per thread
     std::size_t bytes() const {
       return (key_in.capacity() + key.capacity() + tkey.capacity() + k0.capacity() + tk.capacity()) *
                  sizeof(std::uint64_t) +
              (coarse.capacity() + order.capacity() + torder.capacity() + tid.capacity() + t.capacity() +
-              cursor.capacity() + bucket_begin.capacity() + coarse_base.capacity()) *
+              cursor.capacity() + bucket_begin.capacity() + coarse_base.capacity() + cells_before.capacity()) *
                  sizeof(std::uint32_t) +
+             d_max_of.capacity() * sizeof(double) + error_of.capacity() * sizeof(std::exception_ptr) +
+             level_of.capacity() * sizeof(int) +
              tsph.capacity() * sizeof(Sphere<D>) + shift.capacity() * sizeof(int);
     }
   };
+  /// A build runs on at most one thread per this many particles.
+  static constexpr std::size_t kMinParticlesPerThread = 1024;
   /// Sorts the particles into the levels' cells and fills the directory
   /// (levels_ must hold the geometry of params_ and box_).
   void build(std::span<const Sphere<D>> spheres, Scratch& ws);
@@ -198,14 +216,20 @@ class HGrid {
   /// Calls f(bucket, cell key) for every non-empty cell of level L.
   template <class F>
   void for_each_cell(const detail::Level<D>& L, F&& f) const {
+    for_each_cell(L, 0, L.ranked ? L.words : L.slots, f);
+  }
+  /// Same, for the cells of bitmap words [u0, u1) of a ranked level, or of
+  /// table slots [u0, u1) of a hashed one.
+  template <class F>
+  void for_each_cell(const detail::Level<D>& L, std::uint64_t u0, std::uint64_t u1, F&& f) const {
     if (L.ranked) {
-      std::uint64_t b = L.bucket_base;
-      for (std::uint64_t w = 0; w < L.words; ++w)
+      std::uint64_t b = L.bucket_base + (u0 < L.words ? rank_[L.word_base + u0] : L.buckets);
+      for (std::uint64_t w = u0; w < u1; ++w)
         for (std::uint64_t bits = words_[L.word_base + w]; bits; bits &= bits - 1)
           f(b++, (w << 6) | static_cast<std::uint64_t>(std::countr_zero(bits)));
       return;
     }
-    for (std::uint64_t k = 0; k < L.slots; ++k)
+    for (std::uint64_t k = u0; k < u1; ++k)
       if (keys_[L.key_base + k] != detail::kEmptyKey)
         f(L.bucket_base + slot_bucket_[L.key_base + k], keys_[L.key_base + k]);
   }
@@ -323,12 +347,35 @@ class HGrid {
     e.n = n;
   }
 
+  /// A thread's callback f(t, i, j) seen as g(i, j) (grid/threads.hpp).
+  template <class F>
+  struct WithThread {
+    F& f;
+    int t;
+    void operator()(std::uint32_t i, std::uint32_t j) { f(t, i, j); }
+  };
+
   template <class Count, class F>
   void cross_level(std::uint32_t p, int h, int j, F& f, Counters& out) const;
-  /// Top-Down cross-level phase: every particle above the lowest level
-  /// searches the levels below it, in the order of sweep_.
+  /// Same-level phase (and Bottom-Up's cross-level searches) of the cells of
+  /// level h in words (ranked) or slots (hashed) [u0, u1).
+  template <Search S, class Count, class F>
+  void cells_phase(int h, std::uint64_t u0, std::uint64_t u1, F& f, Counters& out) const;
+  /// Top-Down cross-level phase: the particles sweep_[i0, i1) search the
+  /// levels below their own, in the order of sweep_.
   template <class Count, class F>
-  void top_down_sweep(F& f, Counters& out) const;
+  void top_down_sweep(std::size_t i0, std::size_t i1, F& f, Counters& out) const;
+  /// A piece of a query's work: level h's cells in words or slots [u0, u1),
+  /// or, with h = -1, sweep_[u0, u1).
+  struct Task {
+    int h;
+    std::uint64_t u0, u1;
+  };
+  std::vector<Task> plan(int threads, Search s) const;
+  template <class Count>
+  Counters empty_counters() const;
+  template <Search S, class Count, class G>
+  Counters serial_query(G& g) const;
 
   GridParams params_;
   Extent<D> box_{};

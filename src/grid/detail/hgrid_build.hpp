@@ -2,10 +2,13 @@
 // stable sort by (level, cell key) in two cache-friendly steps, and the flat
 // cell directory. Included by hgrid/hgrid.hpp only.
 #pragma once
+#include <atomic>
 #include <bit>
+#include <exception>
 #include <string>
 #include <vector>
 
+#include "grid/detail/parallel.hpp"
 #include "grid/detail/radix.hpp"
 
 namespace hgrid {
@@ -80,40 +83,84 @@ void HGrid<D, B>::build(std::span<const Sphere<D>> spheres, Scratch& ws) {
     return Place{k, coarse_base[h] + static_cast<std::uint32_t>(k >> shift[h])};
   };
 
+  // The passes below run on T threads: pass 1 and 2 on T contiguous blocks
+  // of the input (each thread counts, then scatters, its own block, so the
+  // sort stays stable), pass 3 on the coarse buckets, handed out one at a
+  // time. The grid is the same for any T.
+  const int T = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(resolve_threads(params_.threads)),
+                                                       std::max<std::size_t>(1, N / kMinParticlesPerThread)));
+  const std::size_t C = coarse_base[L];  // coarse buckets
+  const auto block = [&](int t) {
+    return std::pair<std::size_t, std::size_t>{N * static_cast<std::size_t>(t) / static_cast<std::size_t>(T),
+                                               N * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(T)};
+  };
+
   // Pass 1: check every particle, find its place, count the particles per
-  // coarse bucket.
+  // coarse bucket (per thread).
   // Nothing of the grid itself changes before every particle has passed its
-  // checks: a rejected input leaves the grid as it was.
-  auto& cursor = ws.cursor;
-  cursor.assign(coarse_base[L] + 1, 0);
+  // checks: a rejected input leaves the grid as it was; the error reported
+  // is the one of the lowest index, as on one thread.
+  auto& cursor = ws.cursor;  // T rows of C + 1 counts, then of write positions
+  cursor.assign(static_cast<std::size_t>(T) * (C + 1), 0);
   ws.key_in.resize(N);  // uninitialised, all written
   ws.coarse.resize(N);
   std::uint64_t* const key_in = ws.key_in.data();
   std::uint32_t* const coarse = ws.coarse.data();
-  double d_max = 0;
-  for (std::size_t i = 0; i < N; ++i) {
-    const auto& q = spheres[i];
-    if (!(std::isfinite(q.r) && q.r > 0))
-      throw InputError("radius", "particle " + std::to_string(i) + " has radius " + std::to_string(q.r) +
-                                     " (must be finite and > 0)");
-    for (int a = 0; a < D; ++a) {
-      if (!std::isfinite(q.x[a]))
-        throw InputError("position", "particle " + std::to_string(i) + " has a non-finite coordinate");
-      if (B == Boundary::walls && (q.x[a] < 0 || q.x[a] > box[a]))
-        throw InputError("position", "particle " + std::to_string(i) + " has its centre outside the walled box [0, " +
-                                         std::to_string(box[a]) + "] on axis " + std::to_string(a + 1));
+  auto& d_max_of = ws.d_max_of;
+  auto& error_of = ws.error_of;
+  d_max_of.assign(static_cast<std::size_t>(T), 0.0);
+  error_of.assign(static_cast<std::size_t>(T), nullptr);
+  detail::parallel_for(T, T, [&](std::size_t t, int) {
+    const auto [i0, i1] = block(static_cast<int>(t));
+    std::uint32_t* const count = cursor.data() + t * (C + 1);
+    double d_max = 0;
+    try {
+      for (std::size_t i = i0; i < i1; ++i) {
+        const auto& q = spheres[i];
+        if (!(std::isfinite(q.r) && q.r > 0))
+          throw InputError("radius", "particle " + std::to_string(i) + " has radius " + std::to_string(q.r) +
+                                         " (must be finite and > 0)");
+        for (int a = 0; a < D; ++a) {
+          if (!std::isfinite(q.x[a]))
+            throw InputError("position", "particle " + std::to_string(i) + " has a non-finite coordinate");
+          if (B == Boundary::walls && (q.x[a] < 0 || q.x[a] > box[a]))
+            throw InputError("position", "particle " + std::to_string(i) +
+                                             " has its centre outside the walled box [0, " + std::to_string(box[a]) +
+                                             "] on axis " + std::to_string(a + 1));
+        }
+        d_max = std::max(d_max, 2 * q.r);
+        const Place pl = place(wrapped(i));
+        key_in[i] = pl.key;
+        coarse[i] = pl.coarse;
+        ++count[pl.coarse];
+      }
+    } catch (...) {
+      error_of[t] = std::current_exception();  // blocks are in index order: the first one set is the lowest index
     }
-    d_max = std::max(d_max, 2 * q.r);
-    const Place pl = place(wrapped(i));
-    key_in[i] = pl.key;
-    coarse[i] = pl.coarse;
-    ++cursor[pl.coarse + 1];
-  }
+    d_max_of[t] = d_max;
+  });
+  for (const auto& e : error_of)
+    if (e) std::rethrow_exception(e);
+  const double d_max = *std::max_element(d_max_of.begin(), d_max_of.end());
   if (N > 0 && d_max > s.back())
     throw InputError("sizes", "the last cell size " + std::to_string(s.back()) +
                                   " is below the largest diameter " + std::to_string(d_max));
-  for (std::size_t c = 1; c < cursor.size(); ++c) cursor[c] += cursor[c - 1];
-  ws.bucket_begin.assign(cursor.begin(), cursor.end());
+  // Counts -> write positions: bucket c of thread t starts after bucket c of
+  // the threads before t and after every bucket before c.
+  ws.bucket_begin.resize(C + 1);
+  {
+    std::uint32_t at = 0;
+    for (std::size_t c = 0; c < C; ++c) {
+      ws.bucket_begin[c] = at;
+      for (int t = 0; t < T; ++t) {
+        std::uint32_t& v = cursor[static_cast<std::size_t>(t) * (C + 1) + c];
+        const std::uint32_t n = v;
+        v = at;
+        at += n;
+      }
+    }
+    ws.bucket_begin[C] = at;
+  }
   const auto& bucket_begin = ws.bucket_begin;
   level_begin_.resize(L + 1);
   for (int h = 0; h <= L; ++h) level_begin_[h] = bucket_begin[coarse_base[h]];
@@ -123,12 +170,16 @@ void HGrid<D, B>::build(std::span<const Sphere<D>> spheres, Scratch& ws) {
   std::uint64_t* const key = ws.key.data();
   id_.resize(N);
   sorted_.resize(N);
-  for (std::size_t i = 0; i < N; ++i) {
-    const std::uint32_t at = cursor[coarse[i]]++;
-    sorted_[at] = wrapped(i);
-    key[at] = key_in[i];
-    id_[at] = static_cast<std::uint32_t>(i);
-  }
+  detail::parallel_for(T, T, [&](std::size_t t, int) {
+    const auto [i0, i1] = block(static_cast<int>(t));
+    std::uint32_t* const cur = cursor.data() + t * (C + 1);
+    for (std::size_t i = i0; i < i1; ++i) {
+      const std::uint32_t at = cur[coarse[i]]++;
+      sorted_[at] = wrapped(i);
+      key[at] = key_in[i];
+      id_[at] = static_cast<std::uint32_t>(i);
+    }
+  });
 
   // The directory's layout per level, from the particle counts: a rank
   // directory (one bit per cell, a prefix count per 64 cells), or an
@@ -160,67 +211,106 @@ void HGrid<D, B>::build(std::span<const Sphere<D>> spheres, Scratch& ws) {
   slot_bucket_.assign(slots, 0);
   start_.resize(N + 1);  // at most one bucket per particle; trimmed below
 
-  // Pass 3: inside each coarse bucket, sort by the low key bits and permute;
-  // then, while the bucket is in the cache, one directory bucket per
-  // non-empty cell, in (level, key) order.
-  std::uint64_t buckets = 0;
+  // Pass 3: inside each coarse bucket, sort by the low key bits and permute,
+  // and count its distinct keys (its non-empty cells, one directory bucket
+  // each); then, once every bucket knows where its directory buckets start,
+  // fill the directory, buckets in (level, key) order.
+  auto& level_of = ws.level_of;
+  level_of.resize(C);
+  for (int h = 0; h < L; ++h)
+    for (std::uint32_t c = coarse_base[h]; c < coarse_base[h + 1]; ++c) level_of[c] = h;
+  auto& cells_before = ws.cells_before;  // distinct keys of each coarse bucket, then their prefix sum
+  cells_before.assign(C + 1, 0);
   {
     std::size_t most = 0;
-    for (std::size_t c = 0; c + 1 < bucket_begin.size(); ++c)
-      most = std::max<std::size_t>(most, bucket_begin[c + 1] - bucket_begin[c]);
+    for (std::size_t c = 0; c < C; ++c) most = std::max<std::size_t>(most, bucket_begin[c + 1] - bucket_begin[c]);
     auto& tkey = ws.tkey;
     auto &order = ws.order, &torder = ws.torder, &tid = ws.tid;
     auto& tsph = ws.tsph;
-    for (auto* v : {&order, &torder, &tid}) v->resize(most);
-    tkey.resize(most);
-    tsph.resize(most);
-    for (int h = 0; h < L; ++h) {
-      auto& lv = levels_[h];
-      lv.bucket_base = buckets;
-      for (std::uint32_t c = coarse_base[h]; c < coarse_base[h + 1]; ++c) {
-        const std::uint32_t b = bucket_begin[c], n = bucket_begin[c + 1] - b;
-        const std::uint64_t* k = key + b;
-        if (n >= 2) {
-          // The permutation below reads the bucket's particles in random
-          // order, and the scatter wrote them long ago (out of the cache at
-          // large N): ask for all of them first, in address order, so that
-          // the loads overlap with the key sort instead of each waiting for
-          // memory (build at N = 10^6: about -1.5 ns/particle).
-          for (std::uint32_t m = 0; m < n; m += 2) __builtin_prefetch(&sorted_[b + m]);
-          for (std::uint32_t m = 0; m < n; m += 16) __builtin_prefetch(&id_[b + m]);
-          for (std::uint32_t m = 0; m < n; ++m) order[m] = m;
-          detail::radix_sort_pairs(key + b, order.data(), tkey.data(), torder.data(), n, shift[h]);
-          for (std::uint32_t m = 0; m < n; ++m) {
-            tsph[m] = sorted_[b + order[m]];
-            tid[m] = id_[b + order[m]];
-          }
-          std::copy(tsph.begin(), tsph.begin() + n, sorted_.begin() + b);
-          std::copy(tid.begin(), tid.begin() + n, id_.begin() + b);
-        }
+    const std::size_t per = most, all = per * static_cast<std::size_t>(T);  // one slice per thread
+    for (auto* v : {&order, &torder, &tid}) v->resize(all);
+    tkey.resize(all);
+    tsph.resize(all);
+    detail::parallel_for(T, C, [&](std::size_t c, int t) {
+      const std::size_t o = per * static_cast<std::size_t>(t);
+      const std::uint32_t b = bucket_begin[c], n = bucket_begin[c + 1] - b;
+      const std::uint64_t* k = key + b;
+      if (n >= 2) {
+        // The permutation below reads the bucket's particles in random
+        // order, and the scatter wrote them long ago (out of the cache at
+        // large N): ask for all of them first, in address order, so that
+        // the loads overlap with the key sort instead of each waiting for
+        // memory (build at N = 10^6: about -1.5 ns/particle).
+        for (std::uint32_t m = 0; m < n; m += 2) __builtin_prefetch(&sorted_[b + m]);
+        for (std::uint32_t m = 0; m < n; m += 16) __builtin_prefetch(&id_[b + m]);
+        std::uint32_t* const ord = order.data() + o;
+        for (std::uint32_t m = 0; m < n; ++m) ord[m] = m;
+        detail::radix_sort_pairs(key + b, ord, tkey.data() + o, torder.data() + o, n, shift[level_of[c]]);
         for (std::uint32_t m = 0; m < n; ++m) {
-          if (m > 0 && k[m] == k[m - 1]) continue;
-          start_[buckets] = b + m;
-          if (lv.ranked) {
-            words_[lv.word_base + (k[m] >> 6)] |= std::uint64_t{1} << (k[m] & 63);
-          } else {
-            std::uint64_t slot = detail::hash_key(k[m]) >> lv.shift;
-            while (keys_[lv.key_base + slot] != detail::kEmptyKey) slot = (slot + 1) & (lv.slots - 1);
-            keys_[lv.key_base + slot] = k[m];
-            slot_bucket_[lv.key_base + slot] = static_cast<std::uint32_t>(buckets - lv.bucket_base);
-          }
-          ++buckets;
+          tsph[o + m] = sorted_[b + ord[m]];
+          tid[o + m] = id_[b + ord[m]];
         }
+        std::copy(tsph.begin() + o, tsph.begin() + o + n, sorted_.begin() + b);
+        std::copy(tid.begin() + o, tid.begin() + o + n, id_.begin() + b);
       }
-      lv.buckets = buckets - lv.bucket_base;
+      std::uint32_t distinct = 0;
+      for (std::uint32_t m = 0; m < n; ++m) distinct += m == 0 || k[m] != k[m - 1];
+      cells_before[c + 1] = distinct;
+    });
+  }
+  for (std::size_t c = 0; c < C; ++c) cells_before[c + 1] += cells_before[c];
+  for (int h = 0; h < L; ++h) {
+    levels_[h].bucket_base = cells_before[coarse_base[h]];
+    levels_[h].buckets = cells_before[coarse_base[h + 1]] - cells_before[coarse_base[h]];
+  }
+  detail::parallel_for(T, C, [&](std::size_t c, int) {
+    const auto& lv = levels_[level_of[c]];
+    const std::uint32_t b = bucket_begin[c], n = bucket_begin[c + 1] - b;
+    const std::uint64_t* k = key + b;
+    // Two coarse buckets share a bitmap word only if they hold fewer than
+    // 64 keys each (shift < 6): then the word is set atomically.
+    const bool shared = shift[level_of[c]] < 6;
+    std::uint64_t bucket = cells_before[c];
+    for (std::uint32_t m = 0; m < n; ++m) {
+      if (m > 0 && k[m] == k[m - 1]) continue;
+      start_[bucket] = b + m;
       if (lv.ranked) {
-        std::uint32_t r = 0;
-        for (std::uint64_t w = 0; w < lv.words; ++w) {
-          rank_[lv.word_base + w] = r;
-          r += static_cast<std::uint32_t>(std::popcount(words_[lv.word_base + w]));
-        }
+        const std::uint64_t bit = std::uint64_t{1} << (k[m] & 63);
+        std::uint64_t& w = words_[lv.word_base + (k[m] >> 6)];
+        if (shared) std::atomic_ref<std::uint64_t>(w).fetch_or(bit, std::memory_order_relaxed);
+        else w |= bit;
+      }
+      ++bucket;
+    }
+  });
+  // The hashed levels' tables, on one thread (a level's coarse buckets would
+  // share its table), in the same order as the buckets.
+  for (int h = 0; h < L; ++h) {
+    const auto& lv = levels_[h];
+    if (lv.ranked) continue;
+    std::uint64_t bucket = 0;
+    for (std::uint32_t c = coarse_base[h]; c < coarse_base[h + 1]; ++c) {
+      const std::uint32_t b = bucket_begin[c], n = bucket_begin[c + 1] - b;
+      const std::uint64_t* k = key + b;
+      for (std::uint32_t m = 0; m < n; ++m) {
+        if (m > 0 && k[m] == k[m - 1]) continue;
+        std::uint64_t slot = detail::hash_key(k[m]) >> lv.shift;
+        while (keys_[lv.key_base + slot] != detail::kEmptyKey) slot = (slot + 1) & (lv.slots - 1);
+        keys_[lv.key_base + slot] = k[m];
+        slot_bucket_[lv.key_base + slot] = static_cast<std::uint32_t>(bucket++);
       }
     }
   }
+  for (int h = 0; h < L; ++h) {
+    const auto& lv = levels_[h];
+    if (!lv.ranked) continue;
+    std::uint32_t r = 0;
+    for (std::uint64_t w = 0; w < lv.words; ++w) {
+      rank_[lv.word_base + w] = r;
+      r += static_cast<std::uint32_t>(std::popcount(words_[lv.word_base + w]));
+    }
+  }
+  const std::uint64_t buckets = cells_before[C];
   start_[buckets] = static_cast<std::uint32_t>(N);
   start_.resize(buckets + 1);
 

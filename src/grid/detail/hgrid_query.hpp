@@ -2,7 +2,9 @@
 // (Krijgsman et al. 2014, Sect. 2, Eqs. 4-5). Included by hgrid/hgrid.hpp only.
 #pragma once
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <type_traits>
 
 namespace hgrid {
@@ -273,9 +275,8 @@ void HGrid<D, B>::cross_level(std::uint32_t p, int h, int j, F& f, Counters& out
 }
 
 template <int D, Boundary B>
-template <Search S, class Count, class F>
-Counters HGrid<D, B>::query(F&& f_user) const {
-  Emit<std::remove_reference_t<F>> f{f_user, id_.data(), {}, 0};
+template <class Count>
+Counters HGrid<D, B>::empty_counters() const {
   const int L = levels();
   Counters out;
   out.levels = L;
@@ -287,72 +288,194 @@ Counters HGrid<D, B>::query(F&& f_user) const {
     out.searches_by_level.assign(L * L, 0);
     out.rows_by_level.assign(L * L, 0);
   }
+  return out;
+}
+
+template <int D, Boundary B>
+template <Search S, class Count, class F>
+void HGrid<D, B>::cells_phase(int h, std::uint64_t u0, std::uint64_t u1, F& f, Counters& out) const {
+  const int L = levels();
   // A cell's half-stencil candidates: short ranges (most, on a sparse level)
   // as one list of indices appended without a data-dependent branch, longer
   // ones as ranges.
   std::array<std::pair<std::uint32_t, std::uint32_t>, detail::kHalfStencil<D>> nb;
   std::array<std::uint32_t, kShortRange * (detail::kHalfStencil<D> + 1)> cand;
-  for (int h = 0; h < L; ++h) {
-    const auto& lv = levels_[h];
-    detail::KeyWalk<D> walk(lv);
-    const StencilRows rows = stencil_rows(lv);
-    for_each_cell(lv, [&](std::uint64_t b, std::uint64_t key) {
-      const std::uint32_t beg = start_[b], end = start_[b + 1];
-      if constexpr (Count::enabled) {
-        ++out.occupied_cells;
-        ++out.occupied_by_level[h];
-      }
-      // Same level (linked cell): the half stencil is shared by the cell's
-      // particles, nb_particles of them: n_cand in short ranges, the rest in
-      // n_nb long ones.
-      int n_nb = 0;
-      std::uint32_t n_cand = 0;
-      std::uint64_t nb_particles = 0;
-      const Coords& c = walk.to(key);
-      bool interior = true;  // not on the first or last cell of any axis
-      for (int a = 0; a < D; ++a) interior = interior && c[a] >= 1 && c[a] + 1 < lv.n[a];
-      const std::uint64_t nb_cells = half_stencil(lv, rows, c, key, b, interior, [&](std::uint32_t qb, std::uint32_t qe) {
-        nb_particles += qe - qb;
-        if (!append_short(cand, n_cand, qb, qe)) nb[n_nb++] = {qb, qe};
-      });
-      if constexpr (Count::enabled) out.probes += lv.ranked ? 0 : nb_cells;
-      const bool plain = rows.plain_dx && interior;
-      const auto tests = [&]<Boundary TB>(std::uint32_t p) {
-        for (std::uint32_t q = p + 1; q < end; ++q) test<Count, TB>(p, q, f, out);
-        test_list<Count, TB>(p, cand.data(), n_cand, f, out);
-        for (int m = 0; m < n_nb; ++m)
-          for (std::uint32_t q = nb[m].first; q < nb[m].second; ++q) test<Count, TB>(p, q, f, out);
-      };
-      for (std::uint32_t p = beg; p < end; ++p) {
-        if (plain) tests.template operator()<Boundary::walls>(p);
-        else tests.template operator()<B>(p);
-        if constexpr (Count::enabled) {
-          const std::uint64_t acc = 1 + nb_cells;
-          const std::uint64_t chk = (end - p - 1) + nb_particles;
-          out.cell_accesses += acc;
-          out.narrow_phase_checks += chk;
-          out.list_checks += n_cand;
-          out.runs += static_cast<std::uint64_t>(n_nb) + (end - p > 1);
-          out.accesses_by_level[h * L + h] += acc;
-          out.checks_by_level[h * L + h] += chk;
-        }
-        // Cross-level search (Eqs. 4-5), Bottom-Up: the levels above. Top-Down
-        // searches the levels below in a second phase, in another order.
-        if constexpr (S == Search::bottom_up) {
-          for (int j = h + 1; j < L; ++j) cross_level<Count>(p, h, j, f, out);
-        }
-      }
+  const auto& lv = levels_[h];
+  detail::KeyWalk<D> walk(lv);
+  const StencilRows rows = stencil_rows(lv);
+  for_each_cell(lv, u0, u1, [&](std::uint64_t b, std::uint64_t key) {
+    const std::uint32_t beg = start_[b], end = start_[b + 1];
+    if constexpr (Count::enabled) {
+      ++out.occupied_cells;
+      ++out.occupied_by_level[h];
+    }
+    // Same level (linked cell): the half stencil is shared by the cell's
+    // particles, nb_particles of them: n_cand in short ranges, the rest in
+    // n_nb long ones.
+    int n_nb = 0;
+    std::uint32_t n_cand = 0;
+    std::uint64_t nb_particles = 0;
+    const Coords& c = walk.to(key);
+    bool interior = true;  // not on the first or last cell of any axis
+    for (int a = 0; a < D; ++a) interior = interior && c[a] >= 1 && c[a] + 1 < lv.n[a];
+    const std::uint64_t nb_cells = half_stencil(lv, rows, c, key, b, interior, [&](std::uint32_t qb, std::uint32_t qe) {
+      nb_particles += qe - qb;
+      if (!append_short(cand, n_cand, qb, qe)) nb[n_nb++] = {qb, qe};
     });
+    if constexpr (Count::enabled) out.probes += lv.ranked ? 0 : nb_cells;
+    const bool plain = rows.plain_dx && interior;
+    const auto tests = [&]<Boundary TB>(std::uint32_t p) {
+      for (std::uint32_t q = p + 1; q < end; ++q) test<Count, TB>(p, q, f, out);
+      test_list<Count, TB>(p, cand.data(), n_cand, f, out);
+      for (int m = 0; m < n_nb; ++m)
+        for (std::uint32_t q = nb[m].first; q < nb[m].second; ++q) test<Count, TB>(p, q, f, out);
+    };
+    for (std::uint32_t p = beg; p < end; ++p) {
+      if (plain) tests.template operator()<Boundary::walls>(p);
+      else tests.template operator()<B>(p);
+      if constexpr (Count::enabled) {
+        const std::uint64_t acc = 1 + nb_cells;
+        const std::uint64_t chk = (end - p - 1) + nb_particles;
+        out.cell_accesses += acc;
+        out.narrow_phase_checks += chk;
+        out.list_checks += n_cand;
+        out.runs += static_cast<std::uint64_t>(n_nb) + (end - p > 1);
+        out.accesses_by_level[h * L + h] += acc;
+        out.checks_by_level[h * L + h] += chk;
+      }
+      // Cross-level search (Eqs. 4-5), Bottom-Up: the levels above. Top-Down
+      // searches the levels below in a second phase, in another order.
+      if constexpr (S == Search::bottom_up) {
+        for (int j = h + 1; j < L; ++j) cross_level<Count>(p, h, j, f, out);
+      }
+    }
+  });
+}
+
+template <int D, Boundary B>
+auto HGrid<D, B>::plan(int threads, Search s) const -> std::vector<Task> {
+  // Pieces of about `grain` particles, many more than threads, handed out
+  // one at a time (dynamic schedule): a piece's cost varies with its level
+  // and the density of its region.
+  const std::uint64_t T = static_cast<std::uint64_t>(threads);
+  const std::uint64_t grain = std::max<std::uint64_t>(512, size() / (32 * T));
+  std::vector<Task> tasks;
+  for (int h = 0; h < levels(); ++h) {
+    const auto& lv = levels_[h];
+    const std::uint64_t n_h = level_begin_[h + 1] - level_begin_[h];
+    if (n_h == 0) continue;
+    const std::uint64_t units = lv.ranked ? lv.words : lv.slots;
+    const std::uint64_t pieces = std::min<std::uint64_t>(units, (n_h + grain - 1) / grain);
+    std::uint64_t u0 = 0;
+    for (std::uint64_t k = 1; k <= pieces; ++k) {
+      std::uint64_t u1 = units;
+      if (k < pieces && lv.ranked) {  // the first word whose cells start at or after the k-th share of particles
+        const std::uint64_t target = level_begin_[h] + n_h * k / pieces;
+        std::uint64_t lo = u0, hi = units;
+        while (lo < hi) {
+          const std::uint64_t mid = lo + (hi - lo) / 2;
+          if (start_[lv.bucket_base + rank_[lv.word_base + mid]] < target) lo = mid + 1;
+          else hi = mid;
+        }
+        u1 = lo;
+      } else if (k < pieces) {  // hashed: the keys are spread evenly over the slots
+        u1 = units * k / pieces;
+      }
+      if (u1 > u0) tasks.push_back({h, u0, u1});
+      u0 = u1;
+    }
   }
-  if constexpr (S == Search::top_down) top_down_sweep<Count>(f, out);
-  f.flush();
+  if (s == Search::top_down) {
+    const std::uint64_t n = sweep_.size(), g = std::max<std::uint64_t>(64, n / (32 * T));
+    for (std::uint64_t i = 0; i < n; i += g) tasks.push_back({-1, i, std::min(n, i + g)});
+  }
+  return tasks;
+}
+
+template <int D, Boundary B>
+template <Search S, class Count, class F>
+Counters HGrid<D, B>::query(F&& f_user, int threads) const {
+  using FU = std::remove_reference_t<F>;
+  const int T = resolve_threads(threads);
+  if (T == 1 || size() == 0) {
+    if constexpr (kTakesThreadIndex<FU>) {
+      WithThread<FU> g{f_user, 0};
+      return serial_query<S, Count>(g);
+    } else {
+      return serial_query<S, Count>(f_user);
+    }
+  }
+#if defined(_OPENMP)
+  const std::vector<Task> tasks = plan(T, S);
+  std::vector<Counters> part(static_cast<std::size_t>(T));
+  std::exception_ptr error;
+  std::atomic<bool> failed{false};
+  // Each thread: its own counters and pair buffer; the pieces handed out one
+  // at a time. The counts are sums of integers, the same whatever the split.
+#pragma omp parallel num_threads(T)
+  {
+    const int t = omp_get_thread_num();
+    Counters local = empty_counters<Count>();
+    auto work = [&](auto& g) {
+      Emit<std::remove_reference_t<decltype(g)>> e{g, id_.data(), {}, 0};
+#pragma omp for schedule(dynamic, 1) nowait
+      for (std::size_t k = 0; k < tasks.size(); ++k) {
+        if (failed.load(std::memory_order_relaxed)) continue;
+        try {
+          const Task& w = tasks[k];
+          if (w.h >= 0) cells_phase<S, Count>(w.h, w.u0, w.u1, e, local);
+          else top_down_sweep<Count>(w.u0, w.u1, e, local);
+        } catch (...) {
+#pragma omp critical(hgrid_query_error)
+          if (!error) error = std::current_exception();
+          failed = true;
+        }
+      }
+      try {
+        if (!failed.load()) e.flush();
+      } catch (...) {
+#pragma omp critical(hgrid_query_error)
+        if (!error) error = std::current_exception();
+        failed = true;
+      }
+    };
+    if constexpr (kTakesThreadIndex<FU>) {
+      WithThread<FU> g{f_user, t};
+      work(g);
+    } else {
+      work(f_user);
+    }
+    part[static_cast<std::size_t>(t)] = std::move(local);
+  }
+  if (error) std::rethrow_exception(error);
+  Counters out = empty_counters<Count>();
+  for (const Counters& c : part)
+    if (c.levels == out.levels) out.add(c);
+  return out;
+#else
+  return serial_query<S, Count>(f_user);
+#endif
+}
+
+template <int D, Boundary B>
+template <Search S, class Count, class G>
+Counters HGrid<D, B>::serial_query(G& g) const {
+  Emit<G> e{g, id_.data(), {}, 0};
+  Counters out = empty_counters<Count>();
+  for (int h = 0; h < levels(); ++h) {
+    const auto& lv = levels_[h];
+    cells_phase<S, Count>(h, 0, lv.ranked ? lv.words : lv.slots, e, out);
+  }
+  if constexpr (S == Search::top_down) top_down_sweep<Count>(0, sweep_.size(), e, out);
+  e.flush();
   return out;
 }
 
 template <int D, Boundary B>
 template <class Count, class F>
-void HGrid<D, B>::top_down_sweep(F& f, Counters& out) const {
-  for (const std::uint32_t p : sweep_) {
+void HGrid<D, B>::top_down_sweep(std::size_t i0, std::size_t i1, F& f, Counters& out) const {
+  for (std::size_t i = i0; i < i1; ++i) {
+    const std::uint32_t p = sweep_[i];
     // The level of p: the last level starting at or before it.
     const int h = static_cast<int>(std::upper_bound(level_begin_.begin(), level_begin_.end(), p) - level_begin_.begin()) - 1;
     for (int j = 0; j < h; ++j) cross_level<Count>(p, h, j, f, out);
