@@ -302,6 +302,7 @@ int run(Options o) {
         j["embree_threads"] = embree.threads();
         j["embree_tasking"] = embree.tasking();
         j["embree_version"] = RTC_VERSION_STRING;
+        j["embree_build_quality"] = "low";
         std::tie(secs["embree"], pairs["embree"]) = best_timed(
             o.repeats, [&] { return embree.template pairs<D, B>(std::span<const Sphere<D>>(s), box); });
       } catch (const std::exception& e) {
@@ -316,6 +317,7 @@ int run(Options o) {
     if (!o.no_bullet) {
       j["bullet_threads"] = 1;
       j["bullet_precision"] = bench::bullet_precision();
+      j["bullet_deferred_collide"] = true;
       std::tie(secs["bullet"], pairs["bullet"]) =
           best_timed(o.repeats, [&] { return bench::bullet_pairs<D, B>(std::span<const Sphere<D>>(s), box); });
       take_sample();

@@ -3,10 +3,12 @@
 // overlapping-pair cache (compiled only when Bullet is found:
 // HGRID_HAVE_BULLET).
 //
-// Every box is inserted as a proxy (with the default, non-deferred collide,
-// insertion already pairs the new proxy with the tree's), then
-// calculateOverlappingPairs completes the cache, which holds each unordered
-// pair of proxies once. With single-precision Bullet each bound is rounded
+// Every box is inserted as a proxy, then calculateOverlappingPairs fills the
+// cache, which holds each unordered pair of proxies once. The broadphase runs
+// with m_deferedcollide set (its public switch: pairs found by one tree-tree
+// traversal in calculateOverlappingPairs instead of a tree query per
+// insertion): on the figure-11 packing at N = 1e5 (248k boxes with the
+// periodic images) 0.84 s against 2.06 s with the default, same pairs. With single-precision Bullet each bound is rounded
 // outward. Periodic boxes: the images of periodic_images.hpp. Timed: images,
 // insertion and pair finding, the exact tests; the broadphase's teardown
 // (emptying the cache, destroying the proxies) is not.
@@ -54,6 +56,7 @@ PeerRun bullet_pairs(std::span<const Sphere<D>> s, const Extent<D>& box) {
   std::vector<Image<D>> img;
   make_images<D, B>(s, box, img);
   auto bp = std::make_unique<btDbvtBroadphase>();
+  bp->m_deferedcollide = true;
   std::vector<btBroadphaseProxy*> proxies;
   proxies.reserve(img.size());
   for (auto& m : img) {

@@ -9,7 +9,10 @@
 // rtcCollide reports every unordered pair of primitives in both orders and
 // no primitive with itself (checked against a brute-force count), so only
 // the order primID0 < primID1 is kept. Periodic boxes: the images of
-// periodic_images.hpp. Timed: images, scene build (rtcCommitScene) and
+// periodic_images.hpp. The scene is built at RTC_BUILD_QUALITY_LOW (Embree's
+// setting for scenes rebuilt every frame; on the figure-11 packing at
+// N = 1e5, build + collide take 0.095 s against 0.174 s at the default
+// MEDIUM, same candidates). Timed: images, scene build (rtcCommitScene) and
 // rtcCollide; the scene's release is not.
 #pragma once
 #ifdef HGRID_HAVE_EMBREE
@@ -72,7 +75,9 @@ class EmbreeCollider {
     std::vector<Image<D>> img;
     make_images<D, B>(s, box, img);
     RTCScene scene = rtcNewScene(device_);
+    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_LOW);
     RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_LOW);
     rtcSetGeometryUserPrimitiveCount(geom, static_cast<unsigned>(img.size()));
     rtcSetGeometryUserData(geom, img.data());
     rtcSetGeometryBoundsFunction(geom, &bounds<D>, nullptr);
