@@ -11,7 +11,7 @@ required=("$@"
       pybind11-dev python3-dev python3-numpy python3-pytest)
 optional=(jq          # plots/calibration.sh (make calibrate-figure) reads the tool's JSON
           lammps      # bench/peers at run time
-          libcgal-dev)  # bench/peers at build time
+          libcgal-dev libembree-dev libbullet-dev)  # bench/peers at build time
 missing() { local p; for p in "$@"; do dpkg -s "$p" >/dev/null 2>&1 || echo "$p"; done; }
 mapfile -t miss_req < <(missing "${required[@]}")
 mapfile -t miss_opt < <(missing "${optional[@]}")

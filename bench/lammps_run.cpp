@@ -11,13 +11,11 @@ namespace {
 
 bool starts_with(const std::string& s, const std::string& p) { return s.compare(0, p.size(), p) == 0; }
 
-/// Second '|' field of a timing row "Neigh | min | avg | max | ...".
-double timing_avg(const std::string& line) {
+/// Field `k` (1: min, 2: avg, 3: max) of a timing row "Neigh | min | avg | max | ...".
+double timing_field(const std::string& line, int k) {
   std::stringstream ss(line);
   std::string field;
-  std::getline(ss, field, '|');
-  std::getline(ss, field, '|');  // min
-  std::getline(ss, field, '|');  // avg
+  for (int i = 0; i <= k; ++i) std::getline(ss, field, '|');
   return std::strtod(field.c_str(), nullptr);
 }
 
@@ -31,8 +29,8 @@ LammpsResult parse_lammps_log(const std::string& log) {
   while (std::getline(ss, line)) {
     if (starts_with(line, "ERROR")) r.error = line;
     if (starts_with(line, "MPI task timing breakdown")) timing = true;
-    if (timing && starts_with(line, "Neigh ")) r.neigh_seconds = timing_avg(line);
-    if (timing && starts_with(line, "Comm ")) r.comm_seconds = timing_avg(line);
+    if (timing && starts_with(line, "Neigh ")) r.neigh_seconds = timing_field(line, 2), r.neigh_max_seconds = timing_field(line, 3);
+    if (timing && starts_with(line, "Comm ")) r.comm_seconds = timing_field(line, 2);
     if (starts_with(line, "Total # of neighbors =")) r.pairs = std::strtoull(line.c_str() + 22, nullptr, 10);
     if (starts_with(line, "Neighbor list builds =")) r.builds = std::strtoull(line.c_str() + 22, nullptr, 10);
   }
@@ -54,10 +52,16 @@ std::optional<std::string> find_lammps() {
   return std::nullopt;
 }
 
-LammpsResult run_lammps(const std::string& lmp, const std::string& dir, const std::string& script) {
+LammpsResult run_lammps(const std::string& lmp, const std::string& dir, const std::string& script, int ranks) {
   const std::string log = "log." + script;
-  const std::string cmd = "cd '" + dir + "' && OMP_NUM_THREADS=1 '" + lmp + "' -in '" + script + "' -log '" + log +
-                          "' -screen none > /dev/null 2>&1";
+  std::string launcher;
+  if (ranks > 1) {
+    const char* m = std::getenv("HGRID_MPIRUN");
+    launcher.append("'").append(m && *m ? m : "mpirun").append("' -np ").append(std::to_string(ranks));
+    launcher.append(" --oversubscribe ").append(::geteuid() == 0 ? "--allow-run-as-root " : "");
+  }
+  const std::string cmd = "cd '" + dir + "' && OMP_NUM_THREADS=1 " + launcher + "'" + lmp + "' -in '" + script +
+                          "' -log '" + log + "' -screen none > /dev/null 2>&1";
   const int rc = std::system(cmd.c_str());
   std::ifstream f(dir + "/" + log);
   std::stringstream text;

@@ -1,8 +1,12 @@
 // hgridlab against its peers: the HGrid vs the single-level linked
-// cell, CGAL box_intersection_d and LAMMPS `neighbor multi` / `bin`, on the
-// figure-11 packing (3D, periodic, alpha = -3, omega = 100, nu = 0.6,
-// excluded volume). Every tool must find the same number of pairs (distance
-// < r_i + r_j); a disagreement exits with status 1.
+// cell, CGAL box_intersection_d, Embree's BVH self-collision (rtcCollide),
+// Bullet's dynamic AABB tree broadphase (btDbvtBroadphase) and LAMMPS
+// `neighbor multi` / `bin`, on the figure-11 packing (3D, periodic,
+// alpha = -3, omega = 100, nu = 0.6, excluded volume). Every tool must find
+// the same number of pairs (distance < r_i + r_j); a disagreement exits with
+// status 1. --threads N gives Embree N threads and runs LAMMPS on N MPI ranks
+// (mpirun -np N); Bullet's broadphase has one thread, and so, for now, has
+// hgridlab.
 //
 //   build/peers --n 100000 --json          (see --help; LAMMPS: `lmp` on PATH)
 #include <CLI/CLI.hpp>
@@ -17,7 +21,10 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "bench/detail/bullet_pairs.hpp"
 #include "bench/detail/cgal_pairs.hpp"
+#include "bench/detail/embree_pairs.hpp"
+#include "bench/detail/periodic_images.hpp"
 #include "grid/dispatch.hpp"
 #include "packing/generate.hpp"
 #include "grid/hgrid.hpp"
@@ -39,8 +46,8 @@ using Clock = std::chrono::steady_clock;
 struct Options {
   PackingSpec spec;
   std::string placement = "excluded", boundary = "periodic", cache = "results/packings", work, csv, scan = "auto";
-  int repeats = 3, builds = 5, bin_builds = 1, lammps_reruns = 2;
-  bool as_json = false, no_cgal = false, no_lammps = false, no_bin = false, linked_cell = false, no_linked_cell = false;
+  int repeats = 3, builds = 5, bin_builds = 1, lammps_reruns = 2, threads = 1;
+  bool as_json = false, no_cgal = false, no_embree = false, no_bullet = false, no_lammps = false, no_bin = false, linked_cell = false, no_linked_cell = false;
 };
 
 /// Best wall time of `repeats` calls of f (which returns the pair count).
@@ -52,6 +59,19 @@ std::pair<double, std::uint64_t> best_of(int repeats, F&& f) {
     const auto t0 = Clock::now();
     pairs = f();
     best = std::min(best, std::chrono::duration<double>(Clock::now() - t0).count());
+  }
+  return {best, pairs};
+}
+
+/// Best time of `repeats` timed runs of f (which returns a bench::PeerRun,
+/// timing itself), and the pair count of the last.
+template <class F>
+std::pair<double, std::uint64_t> best_timed(int repeats, F&& f) {
+  double best = 1e300;
+  std::uint64_t pairs = 0;
+  for (int k = 0; k < repeats; ++k) {
+    const bench::PeerRun r = f();
+    best = std::min(best, r.seconds), pairs = r.pairs;
   }
   return {best, pairs};
 }
@@ -111,7 +131,7 @@ json run_lammps_tools(const Options& o, const Packing& p, const std::string& lmp
   auto attempt = [&](const std::vector<double>& collections, json& row) {
     s.collections = collections;
     export_lammps(dir, p, s);
-    const LammpsResult r = run_lammps(lmp, dir, "in.multi.lmp");
+    const LammpsResult r = run_lammps(lmp, dir, "in.multi.lmp", o.threads);
     after_run();
     row["collections"] = collections;
     row["ok"] = r.ok;
@@ -119,14 +139,15 @@ json run_lammps_tools(const Options& o, const Packing& p, const std::string& lmp
       row["error"] = r.error;
       return 1e300;
     }
-    row["seconds_per_build"] = r.seconds_per_build();
+    row["seconds_per_build"] = r.max_seconds_per_build();
+    if (o.threads > 1) row["avg_seconds_per_build"] = r.seconds_per_build();
     row["comm_seconds_per_build"] = r.comm_seconds / static_cast<double>(std::max<std::uint64_t>(r.builds, 1));
     row["pairs"] = r.pairs;
     if (!pair_counts.empty() && r.pairs != pair_counts.front())
       out["lammps_multi_pairs_error"] = "runs found different pair counts";
     pair_counts.push_back(r.pairs);
-    if (r.seconds_per_build() < best) best = r.seconds_per_build(), best_c = collections, multi_pairs = r.pairs;
-    return r.seconds_per_build();
+    if (r.max_seconds_per_build() < best) best = r.max_seconds_per_build(), best_c = collections, multi_pairs = r.pairs;
+    return r.max_seconds_per_build();
   };
   std::vector<std::pair<double, std::vector<double>>> ranked;
   for (auto [k, smallest] : scan_candidates(o.scan, p, dmin)) {
@@ -181,10 +202,10 @@ json run_lammps_tools(const Options& o, const Packing& p, const std::string& lmp
     s.builds = o.bin_builds;
     s.collections = best_c.empty() ? geometric_collections(p, 1, dmin) : best_c;
     export_lammps(dir, p, s);
-    const LammpsResult r = run_lammps(lmp, dir, "in.bin.lmp");
+    const LammpsResult r = run_lammps(lmp, dir, "in.bin.lmp", o.threads);
     after_run();
     if (r.ok) {
-      bin_s = r.seconds_per_build(), bin_pairs = r.pairs;
+      bin_s = r.max_seconds_per_build(), bin_pairs = r.pairs;
     } else {
       out["lammps_bin_error"] = r.error;
     }
@@ -200,11 +221,12 @@ int run(Options o) {
   if (o.repeats < 1) throw InputError("repeats", "must be >= 1");
   if (o.bin_builds < 1) throw InputError("bin-builds", "must be >= 1");
   if (o.lammps_reruns < 0) throw InputError("lammps-reruns", "must be >= 0");
+  if (o.threads < 1) throw InputError("threads", "must be >= 1");
   const Packing p = cached_packing(o.spec, o.cache);
   const double n = static_cast<double>(p.size());
   json j{{"n", p.size()}, {"d", p.d}, {"nu", o.spec.nu}, {"alpha", o.spec.alpha}, {"omega", o.spec.omega},
          {"placement", o.placement}, {"boundary", o.boundary}, {"seed", o.spec.seed}, {"commit", git_hash()},
-         {"load_average_at_start", load_average()},
+         {"load_average_at_start", load_average()}, {"threads", o.threads}, {"hgrid_threads", 1},
          {"packing", packing_cache_path(o.spec, o.cache)}};
   std::map<std::string, std::uint64_t> pairs;
   std::map<std::string, double> secs;
@@ -273,13 +295,48 @@ int run(Options o) {
 #else
     j["cgal_skipped"] = "built without CGAL";
 #endif
+#ifdef HGRID_HAVE_EMBREE
+    if (!o.no_embree) {
+      try {
+        bench::EmbreeCollider embree(o.threads);
+        j["embree_threads"] = embree.threads();
+        j["embree_tasking"] = embree.tasking();
+        j["embree_version"] = RTC_VERSION_STRING;
+        j["embree_build_quality"] = "low";
+        std::tie(secs["embree"], pairs["embree"]) = best_timed(
+            o.repeats, [&] { return embree.template pairs<D, B>(std::span<const Sphere<D>>(s), box); });
+      } catch (const std::exception& e) {
+        j["embree_error"] = e.what();
+      }
+      take_sample();
+    }
+#else
+    j["embree_skipped"] = "built without Embree";
+#endif
+#ifdef HGRID_HAVE_BULLET
+    if (!o.no_bullet) {
+      j["bullet_threads"] = 1;
+      j["bullet_precision"] = bench::bullet_precision();
+      j["bullet_deferred_collide"] = true;
+      std::tie(secs["bullet"], pairs["bullet"]) =
+          best_timed(o.repeats, [&] { return bench::bullet_pairs<D, B>(std::span<const Sphere<D>>(s), box); });
+      take_sample();
+    }
+#else
+    j["bullet_skipped"] = "built without Bullet";
+#endif
   });
   if (!linked) j["linked_cell_skipped"] = "N > 2e5 (minutes per build); --linked-cell forces it";
+  for (const char* t : {"cgal", "embree", "bullet"})
+    if (j.contains(std::string(t) + "_skipped"))
+      std::cerr << "peers: " << t << " skipped: " << j[std::string(t) + "_skipped"].get<std::string>() << "\n";
+  if (j.contains("embree_error")) std::cerr << "peers: error: Embree: " << j["embree_error"].get<std::string>() << "\n";
   const auto lmp = o.no_lammps ? std::nullopt : find_lammps();
   if (lmp) {
     if (o.work.empty()) o.work = "results/peers/lammps-n" + std::to_string(p.size());
     double ms = 0, bs = 0;
     std::uint64_t mp = 0, bp = 0;
+    j["lammps_ranks"] = o.threads;
     j.update(run_lammps_tools(o, p, *lmp, mp, bp, ms, bs, take_sample));
     if (ms > 0) secs["lammps_multi"] = ms, pairs["lammps_multi"] = mp;
     if (bs > 0) secs["lammps_bin"] = bs, pairs["lammps_bin"] = bp;
@@ -293,9 +350,13 @@ int run(Options o) {
   j["timing"] = "per tool: mean of " + std::to_string(o.builds) +
                 " consecutive builds per run or sample, after one untimed build (LAMMPS: its setup); hgrid: best of its "
                 "samples, taken before, between and after the other tools' runs; lammps_multi: best run of the class sets, the two fastest run 1 + " +
-                std::to_string(o.lammps_reruns) + " times; cgal, "
+                std::to_string(o.lammps_reruns) + " times, on " + std::to_string(o.threads) +
+                " MPI rank(s), the slowest rank's time (max of the Neigh row); cgal, embree, bullet, "
                 "hgrid_new_grid: best of " +
-                std::to_string(o.repeats) + " single builds";
+                std::to_string(o.repeats) +
+                " single builds (embree, bullet: images + build + pair finding + exact tests, their structures' "
+                "release untimed); threads: embree " +
+                std::to_string(o.threads) + ", bullet 1, hgrid 1";
   bool agree = samples_agree;
   if (!samples_agree) j["hgrid_samples_error"] = "the samples found different pair counts";
   for (const auto& [name, s] : secs) {
@@ -303,7 +364,8 @@ int run(Options o) {
     if (pairs[name] != pairs["hgrid"]) agree = false;
     if (name != "hgrid") j["ratio_vs_" + name] = s / secs["hgrid"];
   }
-  if (j.contains("hgrid_new_grid_error") || j.contains("lammps_multi_pairs_error")) agree = false;
+  if (j.contains("hgrid_new_grid_error") || j.contains("lammps_multi_pairs_error") || j.contains("embree_error"))
+    agree = false;
   j["pairs_agree"] = agree;
   std::FILE* t = o.as_json ? stderr : stdout;
   std::fprintf(t, "n = %zu, nu = %g, %s, %s, load average %.2f; time per build (per particle), pairs, tool time / hgrid time\n",
@@ -334,7 +396,8 @@ int run(Options o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"hgridlab vs linked cell, CGAL box_intersection_d and LAMMPS neighbor multi/bin"};
+  CLI::App app{"hgridlab vs linked cell, CGAL box_intersection_d, Embree rtcCollide, Bullet btDbvtBroadphase and LAMMPS "
+               "neighbor multi/bin"};
   Options o;
   o.spec.d = 3, o.spec.nu = 0.6, o.spec.alpha = -3, o.spec.omega = 100, o.spec.progress = true;
   app.add_option("--n", o.spec.n, "number of particles")->required()->check(CLI::NonNegativeNumber);
@@ -347,7 +410,12 @@ int main(int argc, char** argv) {
   app.add_option("--seed", o.spec.seed, "seed")->default_val(1)->check(CLI::NonNegativeNumber);
   app.add_option("--cache", o.cache, "packing cache directory")->default_val("results/packings");
   app.add_option("--work", o.work, "LAMMPS work directory (default results/peers/lammps-nN)");
-  app.add_option("--repeats", o.repeats, "CGAL and hgridlab with a new grid per build: best of this many builds")->default_val(3);
+  app.add_option("--repeats", o.repeats,
+                 "CGAL, Embree, Bullet and hgridlab with a new grid per build: best of this many builds")
+      ->default_val(3);
+  app.add_option("--threads", o.threads,
+                 "Embree's threads and LAMMPS's MPI ranks (mpirun -np N); Bullet and hgridlab: 1 thread")
+      ->default_val(1);
   app.add_option("--builds", o.builds, "timed builds per LAMMPS multi run and per hgridlab sample")->default_val(5);
   app.add_option("--bin-builds", o.bin_builds, "LAMMPS bin: timed builds")->default_val(1);
   app.add_option("--lammps-reruns", o.lammps_reruns,
@@ -357,6 +425,8 @@ int main(int argc, char** argv) {
   app.add_option("--csv", o.csv, "append one row per tool to this CSV");
   app.add_flag("--json", o.as_json, "JSON on stdout (the table goes to stderr)");
   app.add_flag("--no-cgal", o.no_cgal, "skip CGAL");
+  app.add_flag("--no-embree", o.no_embree, "skip Embree");
+  app.add_flag("--no-bullet", o.no_bullet, "skip Bullet");
   app.add_flag("--no-lammps", o.no_lammps, "skip LAMMPS");
   app.add_flag("--no-bin", o.no_bin, "skip LAMMPS bin");
   app.add_flag("--linked-cell", o.linked_cell, "time the linked cell even above N = 2e5");

@@ -16,7 +16,7 @@ set xrange [0:0.65]
 set yrange [0.8:1e5]  # room for the key above LAMMPS bin (at most ~2000x)
 if (!exists("placement")) placement = 'excluded'
 set title sprintf('hgridlab vs peers: {/Symbol a} = -3, {/Symbol w} = 100, d = 3, periodic, %s', placement)
-if (!exists("tools")) tools = "lammps_multi lammps_bin cgal"
+if (!exists("tools")) tools = "lammps_multi lammps_bin cgal embree bullet"
 # One tool (and placement) at a time, so that its points are joined by lines.
 rows(t) = sprintf("< awk -F, 'NR == 1 || ($4 == \"%s\" && $3 == \"%s\")' '%s'", t, placement, in)
 plot for [i=1:words(tools)] rows(word(tools,i)) using "nu":"ratio_vs_hgrid" \
