@@ -4,9 +4,9 @@
 // `neighbor multi` / `bin`, on the figure-11 packing (3D, periodic,
 // alpha = -3, omega = 100, nu = 0.6, excluded volume). Every tool must find
 // the same number of pairs (distance < r_i + r_j); a disagreement exits with
-// status 1. --threads N gives Embree N threads and runs LAMMPS on N MPI ranks
-// (mpirun -np N); Bullet's broadphase has one thread, and so, for now, has
-// hgridlab.
+// status 1. --threads N gives hgridlab and Embree N threads and runs LAMMPS
+// on N MPI ranks (mpirun -np N); Bullet's broadphase has one thread.
+// hgridlab is also sampled on one thread then (speedup_threads).
 //
 //   build/peers --n 100000 --json          (see --help; LAMMPS: `lmp` on PATH)
 #include <CLI/CLI.hpp>
@@ -226,7 +226,7 @@ int run(Options o) {
   const double n = static_cast<double>(p.size());
   json j{{"n", p.size()}, {"d", p.d}, {"nu", o.spec.nu}, {"alpha", o.spec.alpha}, {"omega", o.spec.omega},
          {"placement", o.placement}, {"boundary", o.boundary}, {"seed", o.spec.seed}, {"commit", git_hash()},
-         {"load_average_at_start", load_average()}, {"threads", o.threads}, {"hgrid_threads", 1},
+         {"load_average_at_start", load_average()}, {"threads", o.threads}, {"hgrid_threads", o.threads},
          {"packing", packing_cache_path(o.spec, o.cache)}};
   std::map<std::string, std::uint64_t> pairs;
   std::map<std::string, double> secs;
@@ -235,14 +235,21 @@ int run(Options o) {
   // sets, whose runs spread over minutes; sampling hgridlab before, between
   // and after the other tools' runs spreads it over the same minutes, so that
   // a slow phase of the machine weighs on both tools alike.
-  std::function<std::pair<double, std::uint64_t>()> sample_hgrid;
-  std::vector<double> samples;
+  // With --threads N > 1, hgridlab runs on N threads, and a sample on one
+  // thread is taken beside each (speedup_threads: same run, same moments).
+  std::function<std::pair<double, std::uint64_t>(int)> sample_hgrid;  // argument: threads
+  std::vector<double> samples, samples_one;
   bool samples_agree = true;
   const auto take_sample = [&] {
-    const auto [sec, c] = sample_hgrid();
+    const auto [sec, c] = sample_hgrid(o.threads);
     if (samples.empty()) pairs["hgrid"] = c;
     samples_agree = samples_agree && c == pairs["hgrid"];
     samples.push_back(sec);
+    if (o.threads > 1) {
+      const auto [sec1, c1] = sample_hgrid(1);
+      samples_agree = samples_agree && c1 == pairs["hgrid"];
+      samples_one.push_back(sec1);
+    }
   };
   const std::vector<double> sizes = model_sizes(p, SizeRequest{}, Search::top_down, 0.2);  // optimal
   const double rmax = *std::max_element(p.radii.begin(), p.radii.end());
@@ -266,14 +273,23 @@ int run(Options o) {
     // run loop after the untimed build of its setup (after minutes of
     // waiting for another tool, the first build here is ~20 % slower than
     // the next ones); samples are taken now and after every other tool's run.
-    auto kept = std::make_shared<HGrid<D, B>>(s, box, GridParams{sizes, Search::top_down});
+    auto kept = std::make_shared<HGrid<D, B>>(s, box, GridParams{sizes, Search::top_down, o.threads});
+    auto kept_one = o.threads > 1 ? std::make_shared<HGrid<D, B>>(s, box, GridParams{sizes, Search::top_down, 1}) : kept;
     auto spheres = std::make_shared<std::vector<Sphere<D>>>(s);
-    sample_hgrid = [kept, spheres, &o] {
+    sample_hgrid = [kept, kept_one, spheres, &o](int threads) {
+      const auto& grid = threads > 1 ? kept : kept_one;
+      struct alignas(64) Slot {  // pairs counted per thread (grid/threads.hpp)
+        std::uint64_t n = 0;
+      };
+      std::vector<Slot> found(static_cast<std::size_t>(threads));
       std::uint64_t c = 0;
       auto build = [&] {
-        kept->rebuild(*spheres);
+        grid->rebuild(*spheres);
+        for (auto& f : found) f.n = 0;
+        grid->template query<Search::top_down, Uncounted>(
+            [&found](int t, std::uint32_t, std::uint32_t) { ++found[static_cast<std::size_t>(t)].n; });
         c = 0;
-        kept->template query<Search::top_down, Uncounted>([&c](std::uint32_t, std::uint32_t) { ++c; });
+        for (const auto& f : found) c += f.n;
       };
       build();  // untimed, as LAMMPS's setup
       const auto t0 = Clock::now();
@@ -347,6 +363,14 @@ int run(Options o) {
   take_sample();
   secs["hgrid"] = *std::min_element(samples.begin(), samples.end());
   j["hgrid_samples_seconds_per_build"] = samples;
+  if (!samples_one.empty()) {
+    const double one = *std::min_element(samples_one.begin(), samples_one.end());
+    j["hgrid_one_thread"] = tool(one, pairs["hgrid"], n);
+    j["hgrid_one_thread_samples_seconds_per_build"] = samples_one;
+    j["speedup_threads"] = one / secs["hgrid"];
+  } else {
+    j["speedup_threads"] = 1.0;
+  }
   j["timing"] = "per tool: mean of " + std::to_string(o.builds) +
                 " consecutive builds per run or sample, after one untimed build (LAMMPS: its setup); hgrid: best of its "
                 "samples, taken before, between and after the other tools' runs; lammps_multi: best run of the class sets, the two fastest run 1 + " +
@@ -356,7 +380,8 @@ int run(Options o) {
                 std::to_string(o.repeats) +
                 " single builds (embree, bullet: images + build + pair finding + exact tests, their structures' "
                 "release untimed); threads: embree " +
-                std::to_string(o.threads) + ", bullet 1, hgrid 1";
+                std::to_string(o.threads) + ", bullet 1, hgrid " + std::to_string(o.threads) +
+                (o.threads > 1 ? " (and 1: hgrid_one_thread, speedup_threads)" : "");
   bool agree = samples_agree;
   if (!samples_agree) j["hgrid_samples_error"] = "the samples found different pair counts";
   for (const auto& [name, s] : secs) {
@@ -414,7 +439,7 @@ int main(int argc, char** argv) {
                  "CGAL, Embree, Bullet and hgridlab with a new grid per build: best of this many builds")
       ->default_val(3);
   app.add_option("--threads", o.threads,
-                 "Embree's threads and LAMMPS's MPI ranks (mpirun -np N); Bullet and hgridlab: 1 thread")
+                 "hgridlab's and Embree's threads and LAMMPS's MPI ranks (mpirun -np N); Bullet: 1 thread")
       ->default_val(1);
   app.add_option("--builds", o.builds, "timed builds per LAMMPS multi run and per hgridlab sample")->default_val(5);
   app.add_option("--bin-builds", o.bin_builds, "LAMMPS bin: timed builds")->default_val(1);
