@@ -36,3 +36,4 @@ plot plots/fig12.gp "results/fig12$suffix.csv" fig12-measured-vs-model-n "$(valu
 bash plots/model_errors.sh "$scale"
 bash plots/excess_by_level.sh "$scale"
 bash plots/slice_by_level.sh "$scale"
+bash plots/balance.sh "$scale"

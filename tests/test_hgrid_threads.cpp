@@ -151,3 +151,40 @@ TEST(HGridThreads, ResolveThreads) {
 }
 
 }  // namespace
+
+namespace {
+
+// The pieces of a query's decomposition cover its work exactly once: their
+// counts add up to one query's, for any number of threads simulated.
+TEST(HGridThreads, PiecesAddUpToTheQuery) {
+  const Scene<3> s = random_scene<3>(12000, 0.5, -3.0, 50.0, Boundary::periodic, 10);
+  const HGrid<3, Boundary::periodic> grid(std::span<const Sphere<3>>(s.spheres), s.box,
+                                          GridParams{exponential_sizes(5, 1.0, 50.0)});
+  for (const Search S : {Search::top_down, Search::bottom_up}) {
+    const Counters whole = S == Search::top_down ? query_pairs<Search::top_down, Counted>(grid).second
+                                                 : query_pairs<Search::bottom_up, Counted>(grid).second;
+    for (const int P : {1, 2, 8, 64, 256}) {
+      SCOPED_TRACE(std::string(to_string(S)) + ", P = " + std::to_string(P));
+      const auto pieces = S == Search::top_down ? grid.counted_pieces<Search::top_down>(P)
+                                                : grid.counted_pieces<Search::bottom_up>(P);
+      Counters sum;
+      std::uint64_t particles = 0;
+      for (const auto& p : pieces) {
+        sum.add(p.counts);
+        particles += p.particles;
+      }
+      EXPECT_EQ(sum.cell_accesses, whole.cell_accesses);
+      EXPECT_EQ(sum.narrow_phase_checks, whole.narrow_phase_checks);
+      EXPECT_EQ(sum.contacts, whole.contacts);
+      EXPECT_EQ(sum.searches, whole.searches);
+      EXPECT_EQ(sum.rows, whole.rows);
+      EXPECT_EQ(sum.occupied_cells, whole.occupied_cells);
+      EXPECT_EQ(particles, s.spheres.size());
+      if (P > 1) {
+        EXPECT_GE(pieces.size(), static_cast<std::size_t>(std::min(P, 16)));
+      }
+    }
+  }
+}
+
+}  // namespace

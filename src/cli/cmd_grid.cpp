@@ -1,5 +1,6 @@
 // hgrid pairs / hgrid count: the HGrid on a packing file.
 #include <charconv>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -12,6 +13,7 @@
 #include "packing/packing_model.hpp"
 #include "packing/packing_sizes.hpp"
 #include "grid/brute_force.hpp"
+#include "experiment/balance.hpp"
 #include "experiment/calibration.hpp"
 #include "grid/dispatch.hpp"
 #include "grid/hgrid.hpp"
@@ -236,7 +238,28 @@ void print_count_table(const nlohmann::json& j) {
     std::printf("; excluded-volume model: %s\n", j["model_excluded_skipped"].get<std::string>().c_str());
 }
 
-void run_count(const GridOptions& o, const std::string& K_text, int repeat, bool as_json) {
+/// --balance P1,P2,...: the simulated load balance of the query on P threads
+/// (experiment/balance.hpp), priced by this machine's time model if stored.
+nlohmann::json balance_json(const Packing& p, const GridParams& g, const std::string& list, double K) {
+  std::vector<int> threads;
+  for (const double v : parse_list(list, "balance")) {
+    if (!(v >= 1 && v <= 1e6 && v == std::floor(v)))
+      throw InputError("balance", "thread counts must be whole numbers from 1 to 1000000");
+    threads.push_back(static_cast<int>(v));
+  }
+  BalanceCost cost;
+  cost.K = K;
+  const std::optional<Calibration> cal = stored_calibration();
+  if (const TimeModelFit* t = cal ? cal->time_model(p.d) : nullptr) cost.coef = t->coef;
+  nlohmann::json out = nlohmann::json::array();
+  for (const Balance& b : simulate_balance(p, g, threads, cost))
+    out.push_back({{"threads", b.threads}, {"pieces", b.pieces}, {"imbalance", b.imbalance},
+                   {"largest_piece", b.largest_piece}});
+  return {{"balance", out}, {"balance_cost", cost.name()}};
+}
+
+void run_count(const GridOptions& o, const std::string& K_text, int repeat, bool as_json,
+               const std::string& balance) {
   const double K = resolve_K(K_text, "K");
   if (repeat < 0) throw InputError("repeat", "must be >= 0");
   const Packing p = read_packing(o.file, Isolation::child_process);
@@ -255,6 +278,7 @@ void run_count(const GridOptions& o, const std::string& K_text, int repeat, bool
     add_predicted_seconds(out, p, grid.sizes(), g.search, K, counted_time_terms(c, build_work(grid)));
     return out;
   });
+  if (!balance.empty()) j.update(balance_json(p, g, balance, K));
   if (repeat > 0) {
     const QueryTiming t = time_query(p, g, TimingOptions{repeat, repeat, 0.0});
     j["repeats"] = t.repeats;
@@ -269,6 +293,11 @@ void run_count(const GridOptions& o, const std::string& K_text, int repeat, bool
   if (!as_json && repeat > 0)
     std::printf("wall time, fastest of %d uncounted runs: query %.6g s, build %.6g s\n", repeat,
                 j["seconds_query_best"].get<double>(), j["seconds_build_best"].get<double>());
+  if (!as_json && j.contains("balance"))
+    for (const auto& b : j["balance"])
+      std::printf("simulated on %d threads (%zu pieces, %s): imbalance %.2f %%, largest piece %.3g of a thread's share\n",
+                  b["threads"].get<int>(), b["pieces"].get<std::size_t>(), j["balance_cost"].get<std::string>().c_str(),
+                  100 * b["imbalance"].get<double>(), b["largest_piece"].get<double>());
   if (!as_json && j.contains("predicted_seconds_query"))
     std::printf("time model (%s): query %.6g s, build %.6g s (from the counts: %.6g s, %.6g s)\n",
                 j["time_model"].get<std::string>().c_str(), j["predicted_seconds_query"].get<double>(),
@@ -292,6 +321,7 @@ void register_grid_commands(CLI::App& app) {
     auto K = std::make_shared<std::string>("0.2");
     auto repeat = std::make_shared<int>(0);
     auto js = std::make_shared<bool>(false);
+    auto balance = std::make_shared<std::string>();
     auto* sub = app.add_subcommand("count", "count cell accesses and narrow-phase checks of one contact search");
     add_grid_options(sub, *o);
     sub->add_option("--K", *K, std::string("for T = checks + K accesses and --cells: ") + kKHelp)
@@ -299,8 +329,11 @@ void register_grid_commands(CLI::App& app) {
     sub->add_option("--repeat", *repeat,
                     "also time R uncounted build + query runs and report the fastest (seconds_*_best)")
         ->default_val(0);
+    sub->add_option("--balance", *balance,
+                    "P1,P2,...: simulate the query's load balance on P threads from the counted work of each piece "
+                    "of its decomposition (JSON balance: imbalance = simulated time / (work / P) - 1)");
     sub->add_flag("--json", *js, "print one JSON object");
-    sub->callback([o, K, repeat, js] { run_count(*o, *K, *repeat, *js); });
+    sub->callback([o, K, repeat, js, balance] { run_count(*o, *K, *repeat, *js, *balance); });
   }
 }
 

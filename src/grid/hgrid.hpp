@@ -65,6 +65,22 @@ class HGrid {
                                               : query<Search::bottom_up, Count>(f);
   }
 
+  /// One piece of a query's work on several threads: the pieces are handed
+  /// out one at a time, in order (grid/threads.hpp). Its counts (scalars
+  /// only: the by-level matrices are left empty), the particles whose
+  /// same-level cells it covers, and its level (-1: a part of the Top-Down
+  /// cross-level sweep).
+  struct Piece {
+    Counters counts;
+    std::uint64_t particles = 0;
+    int level = 0;
+  };
+  /// The counted work of every piece of a query on `threads` threads (run
+  /// here one piece after the other): what a simulation of the load balance
+  /// of more threads than a machine has needs (experiment/balance.hpp).
+  template <Search S>
+  std::vector<Piece> counted_pieces(int threads) const;
+
   int levels() const { return static_cast<int>(levels_.size()); }
   std::size_t size() const { return sorted_.size(); }
   /// Cell sizes actually used (periodic boxes fit an integer number of cells

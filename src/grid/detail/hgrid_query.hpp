@@ -354,13 +354,20 @@ void HGrid<D, B>::cells_phase(int h, std::uint64_t u0, std::uint64_t u1, F& f, C
 
 template <int D, Boundary B>
 auto HGrid<D, B>::plan(int threads, Search s) const -> std::vector<Task> {
-  // Pieces of about `grain` particles, many more than threads, handed out
-  // one at a time (dynamic schedule): a piece's cost varies with its level
-  // and the density of its region.
+  // Pieces of about `grain` particles, 32 per thread, handed out one at a
+  // time (dynamic schedule): a piece's cost varies with its level and the
+  // density of its region. The costliest pieces per particle go first, so
+  // that the last ones handed out are small and alike: the Top-Down sweep
+  // (large particles searching every level below), then the levels from the
+  // top down.
   const std::uint64_t T = static_cast<std::uint64_t>(threads);
-  const std::uint64_t grain = std::max<std::uint64_t>(512, size() / (32 * T));
+  const std::uint64_t grain = std::max<std::uint64_t>(64, size() / (32 * T));
   std::vector<Task> tasks;
-  for (int h = 0; h < levels(); ++h) {
+  if (s == Search::top_down) {
+    const std::uint64_t n = sweep_.size(), g = std::max<std::uint64_t>(4, n / (32 * T));
+    for (std::uint64_t i = 0; i < n; i += g) tasks.push_back({-1, i, std::min(n, i + g)});
+  }
+  for (int h = levels() - 1; h >= 0; --h) {
     const auto& lv = levels_[h];
     const std::uint64_t n_h = level_begin_[h + 1] - level_begin_[h];
     if (n_h == 0) continue;
@@ -384,10 +391,6 @@ auto HGrid<D, B>::plan(int threads, Search s) const -> std::vector<Task> {
       if (u1 > u0) tasks.push_back({h, u0, u1});
       u0 = u1;
     }
-  }
-  if (s == Search::top_down) {
-    const std::uint64_t n = sweep_.size(), g = std::max<std::uint64_t>(64, n / (32 * T));
-    for (std::uint64_t i = 0; i < n; i += g) tasks.push_back({-1, i, std::min(n, i + g)});
   }
   return tasks;
 }
@@ -455,6 +458,29 @@ Counters HGrid<D, B>::query(F&& f_user, int threads) const {
 #else
   return serial_query<S, Count>(f_user);
 #endif
+}
+
+template <int D, Boundary B>
+template <Search S>
+auto HGrid<D, B>::counted_pieces(int threads) const -> std::vector<Piece> {
+  std::vector<Piece> out;
+  auto none = [](std::uint32_t, std::uint32_t) {};
+  for (const Task& w : plan(std::max(1, threads), S)) {
+    Piece piece{empty_counters<Counted>(), 0, w.h};
+    Emit<decltype(none)> e{none, id_.data(), {}, 0};
+    if (w.h >= 0) {
+      cells_phase<S, Counted>(w.h, w.u0, w.u1, e, piece.counts);
+      for_each_cell(levels_[w.h], w.u0, w.u1,
+                    [&](std::uint64_t b, std::uint64_t) { piece.particles += start_[b + 1] - start_[b]; });
+    } else {
+      top_down_sweep<Counted>(w.u0, w.u1, e, piece.counts);
+    }
+    for (auto* v : {&piece.counts.accesses_by_level, &piece.counts.checks_by_level, &piece.counts.occupied_by_level,
+                    &piece.counts.searches_by_level, &piece.counts.rows_by_level})
+      *v = {};
+    out.push_back(std::move(piece));
+  }
+  return out;
 }
 
 template <int D, Boundary B>
