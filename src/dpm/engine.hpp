@@ -82,6 +82,8 @@ class Engine final : public Simulation {
     }
     grid_params_.sizes = c.sizes;
     grid_params_.search = c.search;
+    grid_params_.threads = c.threads;
+    thread_keys_.resize(static_cast<std::size_t>(resolve_threads(c.threads)));
     compute_forces();
   }
 
@@ -134,7 +136,9 @@ class Engine final : public Simulation {
 
   double elastic_energy() const override {
     double e = 0;
-    const HGrid<D, B> grid(s_, box_, grid_params_);
+    GridParams one = grid_params_;  // a diagnostic: one thread
+    one.threads = 1;
+    const HGrid<D, B> grid(s_, box_, one);
     std::vector<std::uint64_t> keys, tmp;
     grid.for_each_pair([&](std::uint32_t i, std::uint32_t j) { keys.push_back(pk_.key(i, j)); });
     pk_.sort(keys, tmp);
@@ -217,7 +221,17 @@ class Engine final : public Simulation {
     else grid_.emplace(s_, box_, grid_params_);
     const auto t_built = Clock::now();
     keys_.clear();
-    grid_->for_each_pair([&](std::uint32_t i, std::uint32_t j) { keys_.push_back(pk_.key(i, j)); });
+    if (thread_keys_.size() <= 1) {
+      grid_->for_each_pair([&](std::uint32_t i, std::uint32_t j) { keys_.push_back(pk_.key(i, j)); });
+    } else {
+      // Each thread its own list; their concatenation is sorted into the
+      // canonical order below, so the trajectory is the same for any number
+      // of threads.
+      for (auto& k : thread_keys_) k.clear();
+      grid_->for_each_pair(
+          [&](int t, std::uint32_t i, std::uint32_t j) { thread_keys_[static_cast<std::size_t>(t)].push_back(pk_.key(i, j)); });
+      for (const auto& k : thread_keys_) keys_.insert(keys_.end(), k.begin(), k.end());
+    }
     stats_.seconds_grid_build += std::chrono::duration<double>(t_built - t0).count();
     stats_.seconds_query += seconds_since(t_built);
     stats_.seconds_contact_detection += seconds_since(t0);
@@ -324,6 +338,7 @@ class Engine final : public Simulation {
   std::vector<double> inv_I_;
   detail::PairKeys pk_;                      // contact pairs as keys in canonical order
   std::vector<std::uint64_t> keys_, tkeys_;  // this step's contact pairs, and scratch
+  std::vector<std::vector<std::uint64_t>> thread_keys_;  // per thread, when contact detection has several
   std::optional<HGrid<D, B>> grid_;  // built at the first step, rebuilt at every later one
   std::vector<Vec<D>> fnew_;         // the forces being computed (swapped with f_)
   StepStats stats_;
