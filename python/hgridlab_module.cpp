@@ -59,42 +59,57 @@ GridParams grid_params(const Packing& p, const std::optional<std::vector<double>
 }
 
 py::dict recommend(const DoubleArray& radii, double nu, int d, const std::optional<py::object>& K,
-                   const std::string& search) {
+                   const std::string& search, const std::string& cost) {
   std::string k_text;
   if (K && !K->is_none()) k_text = py::isinstance<py::str>(*K) ? K->cast<std::string>() : format_number(K->cast<double>());
   const KChoice k = choose_K(k_text);
   const Search s = parse_search(search);
-  const Recommendation r = recommend_cell_sizes(to_vector(radii, "radii"), ModelParams{d, nu, k.K, s});
+  const std::vector<double> r_list = to_vector(radii, "radii");
+  const std::optional<TimeModelUse> time = choose_time_model(cost, k, d, static_cast<double>(r_list.size()));
+  const Recommendation r = recommend_cell_sizes(r_list, ModelParams{d, nu, k.K, s}, time);
   py::dict out = py::module_::import("json").attr("loads")(recommendation_json(r, k, s, 0.0));
   out["d"] = d;
   out["nu"] = nu;
   return out;
 }
 
+/// threads: 0 = all cores (OMP_NUM_THREADS), else 1 to 1024.
+int checked_threads(int threads) {
+  if (threads < 0 || threads > 1024) throw InputError("threads", "must be 0 (all cores) or 1 to 1024");
+  return threads;
+}
+
 py::array_t<std::uint32_t> pairs(const DoubleArray& positions, const DoubleArray& radii, const DoubleArray& box,
                                  bool periodic, const std::optional<std::vector<double>>& sizes,
-                                 const std::string& search) {
+                                 const std::string& search, int threads) {
   const Packing p = make_packing(positions, radii, box, periodic);
-  const GridParams params = grid_params(p, sizes, search);
-  std::vector<std::uint32_t> flat;
+  GridParams params = grid_params(p, sizes, search);
+  params.threads = checked_threads(threads);
+  std::vector<std::vector<std::uint32_t>> per(static_cast<std::size_t>(resolve_threads(params.threads)));
   {
     py::gil_scoped_release release;
     dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
       constexpr int D = decltype(dim)::value;
       const auto spheres = p.spheres<D>();
       const HGrid<D, decltype(bnd)::value> grid(spheres, p.extent<D>(), params);
-      grid.for_each_pair([&](std::uint32_t i, std::uint32_t j) { flat.push_back(i), flat.push_back(j); });
+      grid.for_each_pair([&](int t, std::uint32_t i, std::uint32_t j) {
+        auto& v = per[static_cast<std::size_t>(t)];
+        v.push_back(i), v.push_back(j);
+      });
     });
   }
+  std::vector<std::uint32_t> flat;
+  for (const auto& v : per) flat.insert(flat.end(), v.begin(), v.end());
   py::array_t<std::uint32_t> out({static_cast<py::ssize_t>(flat.size() / 2), py::ssize_t{2}});
   std::copy(flat.begin(), flat.end(), out.mutable_data());
   return out;
 }
 
 py::dict count(const DoubleArray& positions, const DoubleArray& radii, const DoubleArray& box, bool periodic,
-               const std::optional<std::vector<double>>& sizes, const std::string& search, double K) {
+               const std::optional<std::vector<double>>& sizes, const std::string& search, double K, int threads) {
   const Packing p = make_packing(positions, radii, box, periodic);
-  const GridParams params = grid_params(p, sizes, search);
+  GridParams params = grid_params(p, sizes, search);
+  params.threads = checked_threads(threads);
   std::vector<double> used;
   const Counters c = dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
     constexpr int D = decltype(dim)::value;
@@ -143,17 +158,20 @@ PYBIND11_MODULE(hgridlab, m) {
             "(Krijgsman, Ogarko & Luding, Comp. Part. Mech. 1 (2014))";
   py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
   m.def("recommend", &recommend, py::arg("radii"), py::arg("nu"), py::arg("d") = 3, py::arg("K") = py::none(),
-        py::arg("search") = "topdown",
+        py::arg("search") = "topdown", py::arg("cost") = "auto",
         "Optimal cell sizes for these radii (any unit) at packing fraction nu: a dict with the keys of "
         "`hgrid recommend --json` that do not describe a file (levels, sizes in the radii's unit, T_over_N, speedup "
         "over the linked cell, K and K_source, lammps and mercurydpm lines, ...) plus d and nu. K: a number, 'auto', "
-        "or None for the stored calibration if any, else 0.2.");
+        "or None for the stored calibration if any, else 0.2. cost: 'count' (the paper's T), 'time' (this "
+        "machine's time model, from `hgrid calibrate`) or 'auto' (the time model when K came from a calibration "
+        "that has one), as `hgrid recommend --cost`.");
   m.def("pairs", &pairs, py::arg("positions"), py::arg("radii"), py::arg("box"), py::arg("periodic") = true,
-        py::arg("sizes") = py::none(), py::arg("search") = "topdown",
-        "Every overlapping pair (i, j), i < j, as an (M, 2) uint32 array; sizes: cell sizes (default: recommended).");
+        py::arg("sizes") = py::none(), py::arg("search") = "topdown", py::arg("threads") = 0,
+        "Every overlapping pair (i, j), i < j, as an (M, 2) uint32 array, in no particular order; sizes: cell sizes "
+        "(default: recommended); threads: 0 = all cores (OMP_NUM_THREADS), the same pairs for any number.");
   m.def("count", &count, py::arg("positions"), py::arg("radii"), py::arg("box"), py::arg("periodic") = true,
-        py::arg("sizes") = py::none(), py::arg("search") = "topdown", py::arg("K") = kPaperK,
-        "The counted search: cell_accesses, narrow_phase_checks, contacts, particles_per_level, accesses_by_level and "
+        py::arg("sizes") = py::none(), py::arg("search") = "topdown", py::arg("K") = kPaperK, py::arg("threads") = 0,
+        "The counted search (the same counts for any number of threads): cell_accesses, narrow_phase_checks, contacts, particles_per_level, accesses_by_level and "
         "checks_by_level (L x L, row-major: level of the particle, level searched), the sizes used, T_over_N.");
   m.def("read_packing", &read_particle_file, py::arg("path"),
         "A particle file of any supported format: radii, positions (or None), box (or None), boundary (or None), "

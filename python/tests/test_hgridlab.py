@@ -90,6 +90,31 @@ def test_pairs_equal_brute_force(d, periodic):
     assert set(map(tuple, fixed.tolist())) == brute_pairs(positions, radii, box, periodic)
 
 
+def test_recommend_cost(monkeypatch, tmp_path):
+    radii = np.linspace(1.0, 10.0, 500)
+    assert hgridlab.recommend(radii, 0.6, 3, K=0.2, cost="count")["cost"] == "count"
+    with pytest.raises(ValueError, match="cost"):
+        hgridlab.recommend(radii, 0.6, 3, cost="fast")
+    monkeypatch.setenv("HGRID_CALIBRATION", str(tmp_path / "none.json"))  # no calibration stored
+    assert hgridlab.recommend(radii, 0.6, 3)["cost"] == "count"  # auto without one: the paper's K
+    with pytest.raises(ValueError, match="cost"):
+        hgridlab.recommend(radii, 0.6, 3, cost="time")
+
+
+def test_threads_give_the_same_pairs_and_counts():
+    positions, radii, box = scene(nu=0.4)
+    want = brute_pairs(positions, radii, box, True)
+    counts = []
+    for threads in (1, 2, 3, 8):
+        got = hgridlab.pairs(positions, radii, box, True, threads=threads)
+        assert set(map(tuple, got.tolist())) == want and len(got) == len(want)
+        c = hgridlab.count(positions, radii, box, True, threads=threads)
+        counts.append((c["cell_accesses"], c["narrow_phase_checks"], c["contacts"], c["checks_by_level"]))
+    assert all(c == counts[0] for c in counts)
+    with pytest.raises(ValueError, match="threads"):
+        hgridlab.pairs(positions, radii, box, True, threads=-1)
+
+
 def test_count_returns_the_counts():
     positions, radii, box = scene(nu=0.4)
     c = hgridlab.count(positions, radii, box, True, sizes=[4.0, 2 * radii.max()], K=0.5)

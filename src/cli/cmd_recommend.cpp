@@ -103,14 +103,7 @@ void run_recommend(const RecommendOptions& o) {
   const KChoice k = choose_K(o.K);
   // The time model: asked for, or by default when the calibration that gave
   // K has one for this dimension.
-  std::optional<TimeModelUse> time;
-  const bool want_time = o.cost == "time" || (o.cost == "auto" && k.source == KSource::calibration);
-  if (o.cost != "auto") parse_cost(o.cost);  // refuses anything but count and time
-  if (want_time) {
-    const std::optional<Calibration> cal = stored_calibration();
-    if (cal && cal->time_model(in.d)) time = TimeModelUse{cal->time_model(in.d)->coef, double(s.size())};
-    else if (o.cost == "time") time = TimeModelUse{calibrated_time_model(in.d, "cost").coef, double(s.size())};
-  }
+  const std::optional<TimeModelUse> time = choose_time_model(o.cost, k, in.d, double(s.size()));
   const Recommendation r = recommend_cell_sizes(s.radii, ModelParams{in.d, in.nu, k.K, search}, time);
   if (o.json) print_json(o, s, in, k, r, search);
   else print_text(o, s, in, k, r, search);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "experiment/calibration.hpp"
 #include "grid/error.hpp"
 #include "model/cell_sizes.hpp"
 #include "model/distribution.hpp"
@@ -36,6 +37,16 @@ Recommendation recommend_cell_sizes(const std::vector<double>& radii, const Mode
   out.linked_cell_size = 2 * out.r_max;
   out.linked_cell.sizes = {out.linked_cell_size};
   return out;
+}
+
+std::optional<TimeModelUse> choose_time_model(const std::string& cost, const KChoice& k, int d, double n) {
+  if (cost != "auto") parse_cost(cost);  // refuses anything but count and time
+  const bool want = cost == "time" || (cost == "auto" && k.source == KSource::calibration);
+  if (!want) return std::nullopt;
+  const std::optional<Calibration> cal = stored_calibration();
+  if (cal && cal->time_model(d)) return TimeModelUse{cal->time_model(d)->coef, n};
+  if (cost == "time") return TimeModelUse{calibrated_time_model(d, "cost").coef, n};
+  return std::nullopt;
 }
 
 }  // namespace hgrid

@@ -3,8 +3,10 @@
 // predicted cost and the predicted speed-up over the single-level linked cell.
 #pragma once
 #include <optional>
+#include <string>
 #include <vector>
 
+#include "experiment/k_choice.hpp"
 #include "model/model.hpp"
 #include "model/time_model.hpp"
 
@@ -39,5 +41,11 @@ struct Recommendation {
 /// another unit give the same sizes in that unit. Throws InputError.
 Recommendation recommend_cell_sizes(const std::vector<double>& radii, const ModelParams& p,
                                     const std::optional<TimeModelUse>& time = std::nullopt);
+
+/// The time model a recommendation uses for `cost` ("count": none; "time":
+/// the stored calibration's for dimension d, an InputError naming `cost` if
+/// there is none; "auto": the stored one when K came from the calibration
+/// and it has a time model for d), for n particles.
+std::optional<TimeModelUse> choose_time_model(const std::string& cost, const KChoice& k, int d, double n);
 
 }  // namespace hgrid
