@@ -11,6 +11,7 @@
 #include "grid/error.hpp"
 #include "packing/packing.hpp"
 #include "cli_support.hpp"
+#include "grid/threads.hpp"
 #include "support.hpp"
 #include "io/packing_file.hpp"
 #include "io/provenance.hpp"
@@ -109,12 +110,34 @@ TEST_F(Cli, ThreadsGiveTheSameResults) {
     if (t == 1) one = j;
     EXPECT_EQ(j, one);
   }
+  // The default (0, all cores) follows OMP_NUM_THREADS.
+  const Result env = hgrid_run("count " + path("p.h5") + " --sizes 40.001 --json", "OMP_NUM_THREADS=3");
+  ASSERT_EQ(env.status, 0) << env.err;
+  if (kHaveThreads) {
+    EXPECT_EQ(nlohmann::json::parse(env.out)["threads"], 3);
+  }
   for (const char* bad : {"-1", "1025", "two"}) {
     const Result r = hgrid_run("count " + path("p.h5") + " --sizes 40.001 --threads " + bad);
     EXPECT_EQ(r.status, 2) << bad;
     EXPECT_NE(r.err.find("threads"), std::string::npos) << r.err;
     EXPECT_TRUE(r.out.empty());
   }
+}
+
+// A file without '# boundary' is periodic, and count and info say it was assumed.
+TEST_F(Cli, AssumedBoundaryIsStated) {
+  std::ofstream(path("nb.csv")) << "# box 4 4\nx,y,r\n0.5,0.5,0.5\n1.4,0.5,0.5\n";
+  std::ofstream(path("wb.csv")) << "# box 4 4\n# boundary walls\nx,y,r\n0.5,0.5,0.5\n1.4,0.5,0.5\n";
+  const Result a = hgrid_run("count " + path("nb.csv") + " --sizes 2 --json");
+  ASSERT_EQ(a.status, 0) << a.err;
+  EXPECT_EQ(nlohmann::json::parse(a.out)["boundary_source"], "assumed: not in the file");
+  const Result w = hgrid_run("count " + path("wb.csv") + " --sizes 2 --json");
+  ASSERT_EQ(w.status, 0) << w.err;
+  EXPECT_EQ(nlohmann::json::parse(w.out)["boundary_source"], "file");
+  const Result t = hgrid_run("count " + path("nb.csv") + " --sizes 2");
+  EXPECT_NE(t.out.find("periodic (not in the file: assumed)"), std::string::npos) << t.out;
+  const Result i = hgrid_run("info " + path("nb.csv"));
+  EXPECT_NE(i.out.find("periodic (not in the file: assumed)"), std::string::npos) << i.out;
 }
 
 TEST_F(Cli, CountJson) {

@@ -20,6 +20,7 @@
 #include "packing/packing.hpp"
 #include "experiment/timing.hpp"
 #include "io/packing_file.hpp"
+#include "io/particle_file.hpp"
 #include "model/distribution.hpp"
 #include "model/time_model.hpp"
 
@@ -128,6 +129,7 @@ nlohmann::json count_json(const Packing& p, const GridParams& g, const std::vect
   j["n"] = p.size();
   j["d"] = p.d;
   j["boundary"] = to_string(p.boundary);
+  j["boundary_source"] = boundary_description(p) == to_string(p.boundary) ? "file" : kBoundaryAssumed;
   j["packing_fraction"] = p.packing_fraction();
   j["search"] = to_string(g.search);
   j["threads"] = resolve_threads(g.threads);
@@ -211,8 +213,9 @@ void add_predicted_seconds(nlohmann::json& j, const Packing& p, const std::vecto
 }
 
 void print_count_table(const nlohmann::json& j) {
-  std::printf("n = %zu, d = %d, %s, nu = %.6g, search %s, K = %g\n", j["n"].get<std::size_t>(), j["d"].get<int>(),
-              j["boundary"].get<std::string>().c_str(), j["packing_fraction"].get<double>(),
+  std::printf("n = %zu, d = %d, %s%s, nu = %.6g, search %s, K = %g\n", j["n"].get<std::size_t>(), j["d"].get<int>(),
+              j["boundary"].get<std::string>().c_str(),
+              j["boundary_source"] == "file" ? "" : " (not in the file: assumed)", j["packing_fraction"].get<double>(),
               j["search"].get<std::string>().c_str(), j["K"].get<double>());
   const bool ex = !j["model_excluded_T_over_N"].is_null();
   // The models' columns: expected narrow-phase checks of the level's particles.

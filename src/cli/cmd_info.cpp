@@ -9,6 +9,7 @@
 #include "packing/generate.hpp"
 #include "packing/rcp.hpp"
 #include "io/packing_file.hpp"
+#include "io/particle_file.hpp"
 
 namespace hgrid::cli {
 namespace {
@@ -62,7 +63,7 @@ void run_info(const InfoOptions& o) {
     std::cout << j.dump(2) << "\n";
     return;
   }
-  std::cout << o.file << ": n = " << p.size() << ", d = " << p.d << ", " << to_string(p.boundary) << ", nu = " << q.nu
+  std::cout << o.file << ": n = " << p.size() << ", d = " << p.d << ", " << boundary_description(p) << ", nu = " << q.nu
             << "\n  max / mean relative overlap: " << q.max_rel_overlap << " / " << q.mean_rel_overlap
             << "\n  mean contact number: " << q.mean_contacts << "\n  slab nu, worst relative deviation: "
             << q.slab_max_dev << " (counting noise alone: " << q.slab_noise << ")\n  per size band (equal volume shares):";

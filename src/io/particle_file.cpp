@@ -96,10 +96,17 @@ Packing to_packing(ParticleSet s, const std::string& name) {
   p.d = s.d;
   p.box = *s.box;
   p.boundary = s.boundary.value_or(Boundary::periodic);
+  if (!s.boundary) p.str_attrs[kBoundarySourceAttr] = kBoundaryAssumed;
   p.positions = std::move(s.positions);
   p.radii = std::move(s.radii);
   validate(p);
   return p;
+}
+
+std::string boundary_description(const Packing& p) {
+  const auto it = p.str_attrs.find(kBoundarySourceAttr);
+  if (it != p.str_attrs.end() && it->second == kBoundaryAssumed) return "periodic (not in the file: assumed)";
+  return to_string(p.boundary);
 }
 
 std::string boundary_description(const ParticleSet& s) {

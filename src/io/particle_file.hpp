@@ -58,5 +58,10 @@ Packing to_packing(ParticleSet s, const std::string& name);
 /// What the boundary of a packing made from `s` is and where it comes from:
 /// "periodic", "walls", or "periodic (not in the file: assumed)".
 std::string boundary_description(const ParticleSet& s);
+/// The same for a packing read by read_packing or to_packing, which mark an
+/// assumed boundary with the attribute kBoundarySourceAttr.
+std::string boundary_description(const Packing& p);
+inline constexpr const char* kBoundarySourceAttr = "boundary_source";
+inline constexpr const char* kBoundaryAssumed = "assumed: not in the file";
 
 }  // namespace hgrid
