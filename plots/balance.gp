@@ -13,7 +13,7 @@ set logscale y
 set yrange [1e-4:*]
 set grid
 set key top left box opaque font ',9' maxrows 6
-omegas = '2 10 50 100'
+if (!exists("omegas")) omegas = '2 10 50 100'
 threads = '8 64 256'
 pt(t) = t == 8 ? 7 : (t == 64 ? 5 : 9)
 dt(t) = t == 8 ? 1 : (t == 64 ? 2 : 3)

@@ -47,7 +47,7 @@ trap 'rm -f "$tmp"' EXIT
 mv -f "$tmp" "$csv"
 for fmt in png pdf; do
   out="paper_figs/balance$suffix.$fmt" t="paper_figs/.balance$suffix.tmp.$fmt"
-  gnuplot -e "in='$csv'; out='$t'; fmt='$fmt'; n='$n'" plots/balance.gp
+  gnuplot -e "in='$csv'; out='$t'; fmt='$fmt'; n='$n'; omegas='$omegas'" plots/balance.gp
   if [ "$fmt" = pdf ]; then plots/lib/pdf_fixdate.sh "$t"; fi
   mv -f "$t" "$out"
 done
