@@ -456,7 +456,12 @@ Counters HGrid<D, B>::query(F&& f_user, int threads) const {
     if (c.levels == out.levels) out.add(c);
   return out;
 #else
-  return serial_query<S, Count>(f_user);
+  if constexpr (kTakesThreadIndex<FU>) {  // not reached (T is 1 without OpenMP), but compiled
+    WithThread<FU> g{f_user, 0};
+    return serial_query<S, Count>(g);
+  } else {
+    return serial_query<S, Count>(f_user);
+  }
 #endif
 }
 

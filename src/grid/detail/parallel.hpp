@@ -19,6 +19,8 @@ void parallel_for(int threads, std::size_t n, Fn&& fn) {
     for (std::size_t i = 0; i < n; ++i) fn(i, omp_get_thread_num());
     return;
   }
+#else
+  (void)threads;
 #endif
   for (std::size_t i = 0; i < n; ++i) fn(i, 0);
 }
