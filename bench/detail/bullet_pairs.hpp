@@ -32,19 +32,6 @@
 
 namespace hgrid::bench {
 
-/// x as a btScalar, rounded towards -inf (dir < 0) or +inf (dir > 0).
-inline btScalar bt_outward(double x, int dir) {
-  if constexpr (std::is_same_v<btScalar, double>) {
-    return x;
-  } else {
-    const btScalar f = static_cast<btScalar>(x);
-    const btScalar inf = std::numeric_limits<btScalar>::infinity();
-    if (dir < 0 && static_cast<double>(f) > x) return std::nextafter(f, -inf);
-    if (dir > 0 && static_cast<double>(f) < x) return std::nextafter(f, inf);
-    return f;
-  }
-}
-
 /// "double" or "float": the precision of the Bullet build linked in.
 inline const char* bullet_precision() { return std::is_same_v<btScalar, double> ? "double" : "float"; }
 
@@ -60,10 +47,10 @@ PeerRun bullet_pairs(std::span<const Sphere<D>> s, const Extent<D>& box) {
   std::vector<btBroadphaseProxy*> proxies;
   proxies.reserve(img.size());
   for (auto& m : img) {
-    const btVector3 lo(bt_outward(m.x[0] - m.r, -1), bt_outward(m.x[1] - m.r, -1),
-                       D == 3 ? bt_outward(m.x[D - 1] - m.r, -1) : btScalar(0));
-    const btVector3 hi(bt_outward(m.x[0] + m.r, 1), bt_outward(m.x[1] + m.r, 1),
-                       D == 3 ? bt_outward(m.x[D - 1] + m.r, 1) : btScalar(0));
+    const btVector3 lo(round_outward<btScalar>(m.x[0] - m.r, -1), round_outward<btScalar>(m.x[1] - m.r, -1),
+                       D == 3 ? round_outward<btScalar>(m.x[D - 1] - m.r, -1) : btScalar(0));
+    const btVector3 hi(round_outward<btScalar>(m.x[0] + m.r, 1), round_outward<btScalar>(m.x[1] + m.r, 1),
+                       D == 3 ? round_outward<btScalar>(m.x[D - 1] + m.r, 1) : btScalar(0));
     proxies.push_back(bp->createProxy(lo, hi, SPHERE_SHAPE_PROXYTYPE, &m, btBroadphaseProxy::DefaultFilter,
                                       btBroadphaseProxy::AllFilter, nullptr));
   }

@@ -33,16 +33,6 @@
 
 namespace hgrid::bench {
 
-/// The float nearest below (above) x, or x itself when exact.
-inline float float_down(double x) {
-  const float f = static_cast<float>(x);
-  return static_cast<double>(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
-}
-inline float float_up(double x) {
-  const float f = static_cast<float>(x);
-  return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
-}
-
 /// An Embree device with `threads` threads (0: Embree's default, all cores),
 /// kept for every timed collision.
 class EmbreeCollider {
@@ -105,10 +95,10 @@ class EmbreeCollider {
   static void bounds(const RTCBoundsFunctionArguments* a) {
     const Image<D>& m = static_cast<const Image<D>*>(a->geometryUserPtr)[a->primID];
     RTCBounds* b = a->bounds_o;
-    b->lower_x = float_down(m.x[0] - m.r), b->upper_x = float_up(m.x[0] + m.r);
-    b->lower_y = float_down(m.x[1] - m.r), b->upper_y = float_up(m.x[1] + m.r);
+    b->lower_x = round_outward<float>(m.x[0] - m.r, -1), b->upper_x = round_outward<float>(m.x[0] + m.r, 1);
+    b->lower_y = round_outward<float>(m.x[1] - m.r, -1), b->upper_y = round_outward<float>(m.x[1] + m.r, 1);
     if constexpr (D == 3) {
-      b->lower_z = float_down(m.x[2] - m.r), b->upper_z = float_up(m.x[2] + m.r);
+      b->lower_z = round_outward<float>(m.x[2] - m.r, -1), b->upper_z = round_outward<float>(m.x[2] + m.r, 1);
     } else {
       b->lower_z = b->upper_z = 0.0f;
     }

@@ -10,7 +10,9 @@
 #pragma once
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <utility>
 #include <vector>
@@ -18,6 +20,18 @@
 #include "grid/geometry.hpp"
 
 namespace hgrid::bench {
+
+/// x rounded toward -infinity (dir < 0) or +infinity (dir > 0) in the peer's
+/// coordinate type T, so that a box in T still holds the box in double
+/// (exact when T is double).
+template <class T>
+T round_outward(double x, int dir) {
+  const T f = static_cast<T>(x);
+  const T inf = std::numeric_limits<T>::infinity();
+  if (dir < 0 && static_cast<double>(f) > x) return std::nextafter(f, -inf);
+  if (dir > 0 && static_cast<double>(f) < x) return std::nextafter(f, inf);
+  return f;
+}
 
 /// One timed build + query of a peer: seconds and the pair count.
 struct PeerRun {
