@@ -73,18 +73,12 @@ py::dict recommend(const DoubleArray& radii, double nu, int d, const std::option
   return out;
 }
 
-/// threads: 0 = all cores (OMP_NUM_THREADS), else 1 to 1024.
-int checked_threads(int threads) {
-  if (threads < 0 || threads > 1024) throw InputError("threads", "must be 0 (all cores) or 1 to 1024");
-  return threads;
-}
-
 py::array_t<std::uint32_t> pairs(const DoubleArray& positions, const DoubleArray& radii, const DoubleArray& box,
                                  bool periodic, const std::optional<std::vector<double>>& sizes,
                                  const std::string& search, int threads) {
   const Packing p = make_packing(positions, radii, box, periodic);
   GridParams params = grid_params(p, sizes, search);
-  params.threads = checked_threads(threads);
+  params.threads = check_threads(threads);
   std::vector<std::vector<std::uint32_t>> per(static_cast<std::size_t>(resolve_threads(params.threads)));
   {
     py::gil_scoped_release release;
@@ -109,7 +103,7 @@ py::dict count(const DoubleArray& positions, const DoubleArray& radii, const Dou
                const std::optional<std::vector<double>>& sizes, const std::string& search, double K, int threads) {
   const Packing p = make_packing(positions, radii, box, periodic);
   GridParams params = grid_params(p, sizes, search);
-  params.threads = checked_threads(threads);
+  params.threads = check_threads(threads);
   std::vector<double> used;
   const Counters c = dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
     constexpr int D = decltype(dim)::value;

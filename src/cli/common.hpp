@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "grid/threads.hpp"
 #include "io/particle_file.hpp"
 
 namespace hgrid::cli {
@@ -36,11 +37,8 @@ struct FileInputs {
 FileInputs file_inputs(const ParticleSet& s, const std::string& file, std::optional<int> d, std::optional<double> nu);
 
 /// The --threads option of a command that searches (default 0: all cores,
-/// OMP_NUM_THREADS when set), and its check: 0, or 1 to kMaxThreads, else an
-/// InputError naming threads. Returns the value.
-inline constexpr int kMaxThreads = 1024;
+/// OMP_NUM_THREADS when set); checked by hgrid::check_threads (grid/threads.hpp).
 void add_threads_option(CLI::App* sub, int& threads);
-int check_threads(int threads);
 
 /// Parse "a,b,c" into doubles; throws hgrid::InputError naming `field`.
 std::vector<double> parse_list(const std::string& text, const std::string& field);

@@ -20,13 +20,6 @@ void add_threads_option(CLI::App* sub, int& threads) {
       ->default_val(0);
 }
 
-int check_threads(int threads) {
-  if (threads < 0 || threads > kMaxThreads)
-    throw InputError("threads", "must be 0 (all cores) or 1 to " + std::to_string(kMaxThreads) + " (got " +
-                                    std::to_string(threads) + ")");
-  return threads;
-}
-
 std::vector<double> parse_list(const std::string& text, const std::string& field) {
   std::vector<double> out;
   if (text.empty()) throw InputError(field, "empty list");

@@ -6,6 +6,7 @@
 
 #include "dpm/engine.hpp"
 #include "grid/error.hpp"
+#include "grid/threads.hpp"
 
 namespace hgrid::dpm {
 
@@ -32,7 +33,7 @@ std::unique_ptr<Simulation> with_boundary(const DpmConfig& c, const Packing& p, 
 
 void validate(const DpmConfig& c) {
   if (c.d != 2 && c.d != 3) throw InputError("d", "must be 2 or 3");
-  if (c.threads < 0 || c.threads > 1024) throw InputError("threads", "must be 0 (all cores) or 1 to 1024");
+  check_threads(c.threads);
   for (int k = 0; k < c.d; ++k)
     if (!positive(c.box[k])) throw InputError("box", "side lengths must be finite and > 0");
   if (!positive(c.contact_time)) throw InputError("contact_time", "must be finite and > 0");

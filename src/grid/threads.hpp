@@ -2,7 +2,10 @@
 // than one (OpenMP from the compiler; without it every grid runs on one).
 #pragma once
 #include <cstdint>
+#include <string>
 #include <type_traits>
+
+#include "grid/error.hpp"
 
 #if defined(_OPENMP)
 #include <omp.h>
@@ -28,6 +31,18 @@ inline int resolve_threads(int n) {
   (void)n;
   return 1;
 #endif
+}
+
+/// The most threads a `threads` parameter may ask for.
+inline constexpr int kMaxThreads = 1024;
+
+/// A `threads` value as given by a user: 0 (all cores) or 1 to kMaxThreads,
+/// else an InputError naming `field`. Returns the value.
+inline int check_threads(int n, const std::string& field = "threads") {
+  if (n < 0 || n > kMaxThreads)
+    throw InputError(field, "must be 0 (all cores) or 1 to " + std::to_string(kMaxThreads) + " (got " +
+                                std::to_string(n) + ")");
+  return n;
 }
 
 /// The callback of a query run on T threads. If it can be called as
