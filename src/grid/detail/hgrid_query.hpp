@@ -399,70 +399,64 @@ template <int D, Boundary B>
 template <Search S, class Count, class F>
 Counters HGrid<D, B>::query(F&& f_user, int threads) const {
   using FU = std::remove_reference_t<F>;
-  const int T = resolve_threads(threads);
-  if (T == 1 || size() == 0) {
-    if constexpr (kTakesThreadIndex<FU>) {
-      WithThread<FU> g{f_user, 0};
-      return serial_query<S, Count>(g);
-    } else {
-      return serial_query<S, Count>(f_user);
-    }
-  }
 #if defined(_OPENMP)
-  const std::vector<Task> tasks = plan(T, S);
-  std::vector<Counters> part(static_cast<std::size_t>(T));
-  std::exception_ptr error;
-  std::atomic<bool> failed{false};
-  // Each thread: its own counters and pair buffer; the pieces handed out one
-  // at a time. The counts are sums of integers, the same whatever the split.
+  if (const int T = resolve_threads(threads); T > 1 && size() > 0) {
+    const std::vector<Task> tasks = plan(T, S);
+    std::vector<Counters> part(static_cast<std::size_t>(T));
+    std::exception_ptr error;
+    std::atomic<bool> failed{false};
+    // Each thread: its own counters and pair buffer; the pieces handed out one
+    // at a time. The counts are sums of integers, the same whatever the split.
 #pragma omp parallel num_threads(T)
-  {
-    const int t = omp_get_thread_num();
-    Counters local = empty_counters<Count>();
-    auto work = [&](auto& g) {
-      Emit<std::remove_reference_t<decltype(g)>> e{g, id_.data(), {}, 0};
+    {
+      const int t = omp_get_thread_num();
+      Counters local = empty_counters<Count>();
+      auto work = [&](auto& g) {
+        Emit<std::remove_reference_t<decltype(g)>> e{g, id_.data(), {}, 0};
 #pragma omp for schedule(dynamic, 1) nowait
-      for (std::size_t k = 0; k < tasks.size(); ++k) {
-        if (failed.load(std::memory_order_relaxed)) continue;
+        for (std::size_t k = 0; k < tasks.size(); ++k) {
+          if (failed.load(std::memory_order_relaxed)) continue;
+          try {
+            const Task& w = tasks[k];
+            if (w.h >= 0) cells_phase<S, Count>(w.h, w.u0, w.u1, e, local);
+            else top_down_sweep<Count>(w.u0, w.u1, e, local);
+          } catch (...) {
+#pragma omp critical(hgrid_query_error)
+            if (!error) error = std::current_exception();
+            failed = true;
+          }
+        }
         try {
-          const Task& w = tasks[k];
-          if (w.h >= 0) cells_phase<S, Count>(w.h, w.u0, w.u1, e, local);
-          else top_down_sweep<Count>(w.u0, w.u1, e, local);
+          if (!failed.load()) e.flush();
         } catch (...) {
 #pragma omp critical(hgrid_query_error)
           if (!error) error = std::current_exception();
           failed = true;
         }
+      };
+      if constexpr (kTakesThreadIndex<FU>) {
+        WithThread<FU> g{f_user, t};
+        work(g);
+      } else {
+        work(f_user);
       }
-      try {
-        if (!failed.load()) e.flush();
-      } catch (...) {
-#pragma omp critical(hgrid_query_error)
-        if (!error) error = std::current_exception();
-        failed = true;
-      }
-    };
-    if constexpr (kTakesThreadIndex<FU>) {
-      WithThread<FU> g{f_user, t};
-      work(g);
-    } else {
-      work(f_user);
+      part[static_cast<std::size_t>(t)] = std::move(local);
     }
-    part[static_cast<std::size_t>(t)] = std::move(local);
+    if (error) std::rethrow_exception(error);
+    Counters out = empty_counters<Count>();
+    for (const Counters& c : part)
+      if (c.levels == out.levels) out.add(c);
+    return out;
   }
-  if (error) std::rethrow_exception(error);
-  Counters out = empty_counters<Count>();
-  for (const Counters& c : part)
-    if (c.levels == out.levels) out.add(c);
-  return out;
 #else
-  if constexpr (kTakesThreadIndex<FU>) {  // not reached (T is 1 without OpenMP), but compiled
+  (void)threads;  // one thread without OpenMP
+#endif
+  if constexpr (kTakesThreadIndex<FU>) {
     WithThread<FU> g{f_user, 0};
     return serial_query<S, Count>(g);
   } else {
     return serial_query<S, Count>(f_user);
   }
-#endif
 }
 
 template <int D, Boundary B>
