@@ -2,8 +2,8 @@
 # Installs hgridlab's Debian packages when any is missing. As root, missing
 # packages are installed (apt-get). As a normal user, a missing required
 # package stops with the apt-get line to run; a missing optional one (LAMMPS,
-# CGAL, jq) is skipped with a message. Extra packages may be named as
-# arguments (CI: `bash .ci/deps.sh clang`); they count as required.
+# CGAL, Embree, Bullet, MPI, jq) is skipped with a message. Extra packages may
+# be named as arguments (CI: `bash .ci/deps.sh clang`); they count as required.
 set -euo pipefail
 required=("$@"
       build-essential cmake libgsl-dev libhdf5-dev libbenchmark-dev libgtest-dev
@@ -11,7 +11,8 @@ required=("$@"
       pybind11-dev python3-dev python3-numpy python3-pytest)
 optional=(jq          # plots/calibration.sh (make calibrate-figure) reads the tool's JSON
           lammps      # bench/peers at run time
-          libcgal-dev libembree-dev libbullet-dev)  # bench/peers at build time
+          libcgal-dev libembree-dev libbullet-dev  # bench/peers at build time
+          libopenmpi-dev openmpi-bin)  # hgrid under mpirun/srun, and its tests
 missing() { local p; for p in "$@"; do dpkg -s "$p" >/dev/null 2>&1 || echo "$p"; done; }
 mapfile -t miss_req < <(missing "${required[@]}")
 mapfile -t miss_opt < <(missing "${optional[@]}")

@@ -10,6 +10,7 @@
 #include "cli/common.hpp"
 #include "grid/error.hpp"
 #include "io/provenance.hpp"
+#include "mpi/comm.hpp"
 
 namespace hgrid::cli {
 
@@ -60,11 +61,17 @@ int parse_and_run(CLI::App& app, int argc, char** argv) {
     if (!extra.empty()) std::cerr << "hgrid: error: " << extra.front() << ": unknown option or argument (see --help)\n";
     else std::cerr << "hgrid: " << e.what() << " (see --help)\n";
     return hgrid::cli::kBadInput;
+  } catch (const hgrid::mpi::PeerFailed& e) {
+    return e.status;  // rank 0 reports it
   } catch (const hgrid::InputError& e) {
-    std::cerr << "hgrid: error: " << e.what() << "\n";
+    // Under MPI every rank meets the same bad input; rank 0 says so.
+    if (hgrid::mpi::rank() == 0) std::cerr << "hgrid: error: " << e.what() << "\n";
     return hgrid::cli::kBadInput;
   } catch (const std::exception& e) {
-    std::cerr << "hgrid: internal error: " << e.what() << "\n";
+    // Not agreed on: every rank that meets one says so.
+    if (hgrid::mpi::size() > 1) std::cerr << "hgrid (rank " << hgrid::mpi::rank() << "): ";
+    else std::cerr << "hgrid: ";
+    std::cerr << "internal error: " << e.what() << "\n";
     return 1;
   }
   return 0;
@@ -73,6 +80,8 @@ int parse_and_run(CLI::App& app, int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // MPI only when mpirun or srun started this process (mpi/comm.hpp).
+  const hgrid::mpi::Session mpi_session(argc, argv);
   CLI::App app{"hgrid: hierarchical-grid contact detection, counted, and its cost model\n"
                "(Krijgsman, Ogarko & Luding, Comp. Part. Mech. 1 (2014) 357-372)"};
   app.set_version_flag("--version", std::string("hgrid ") + hgrid::version() + " (" + hgrid::git_hash() + ", " +
