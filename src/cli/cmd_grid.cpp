@@ -61,6 +61,7 @@ struct GridOptions {
   std::string cells;  // a cell-size method, parsed in resolve()
   SizeRequest request;
   int threads = 0;  // 0: all cores (OMP_NUM_THREADS)
+  bool decompose = false;  // over the ranks of an MPI run (cmd_decompose.cpp)
 };
 
 void add_grid_options(CLI::App* sub, GridOptions& o) {
@@ -80,6 +81,18 @@ void add_grid_options(CLI::App* sub, GridOptions& o) {
   sub->add_flag("--excluded-sizes", o.request.excluded_model,
                 "with --cells optimal: refine the sizes under the excluded-volume model (hard-sphere packings, 3D)");
   add_threads_option(sub, o.threads);
+  sub->add_flag("--decompose", o.decompose,
+                "under mpirun/srun: split the box into one brick per rank, each searched by its rank with the "
+                "ghosts it needs (needs --sizes; without MPI: one rank)");
+}
+
+/// The params of a decomposed search: --sizes only (choosing sizes needs
+/// every radius on one rank: `hgrid recommend FILE` prints them).
+GridParams decomposed_params(const GridOptions& o) {
+  if (o.sizes.empty())
+    throw InputError("sizes", "--decompose needs --sizes s1,...,sL (`hgrid recommend FILE` prints good ones)");
+  if (parse_cost(o.cost) == CostKind::time) throw InputError("cost", "'time' chooses sizes: not with --decompose");
+  return GridParams{parse_list(o.sizes, "sizes"), parse_search(o.search), threads_per_rank(check_threads(o.threads))};
 }
 
 GridParams resolve(const GridOptions& o, const Packing& p, double K) {
@@ -102,6 +115,10 @@ GridParams resolve(const GridOptions& o, const Packing& p, double K) {
 }
 
 void run_pairs(const GridOptions& o, bool brute) {
+  if (o.decompose) {
+    if (brute) throw InputError("brute", "not with --decompose");
+    return run_decomposed_pairs(o.file, decomposed_params(o));
+  }
   const Packing p = read_packing(o.file, Isolation::child_process);
   const GridParams g = brute ? GridParams{} : resolve(o, p, 0.2);
   dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
@@ -265,6 +282,10 @@ void run_count(const GridOptions& o, const std::string& K_text, int repeat, bool
                const std::string& balance) {
   const double K = resolve_K(K_text, "K");
   if (repeat < 0) throw InputError("repeat", "must be >= 0");
+  if (o.decompose) {
+    if (repeat > 0 || !balance.empty()) throw InputError(repeat > 0 ? "repeat" : "balance", "not with --decompose");
+    return run_decomposed_count(o.file, decomposed_params(o), K, as_json);
+  }
   const Packing p = read_packing(o.file, Isolation::child_process);
   const GridParams g = resolve(o, p, K);
   nlohmann::json j = dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "grid/params.hpp"
 #include "grid/threads.hpp"
 #include "io/particle_file.hpp"
 
@@ -39,6 +40,14 @@ FileInputs file_inputs(const ParticleSet& s, const std::string& file, std::optio
 /// The --threads option of a command that searches (default 0: all cores,
 /// OMP_NUM_THREADS when set); checked by hgrid::check_threads (grid/threads.hpp).
 void add_threads_option(CLI::App* sub, int& threads);
+
+/// The --decompose forms of pairs and count (cmd_decompose.cpp): the search
+/// split over the ranks of an MPI run; rank 0 prints.
+void run_decomposed_pairs(const std::string& file, const GridParams& g);
+void run_decomposed_count(const std::string& file, const GridParams& g, double K, bool as_json);
+/// A --threads value under MPI: 0 (all cores) shares the cores among the
+/// ranks on this machine unless OMP_NUM_THREADS says otherwise.
+int threads_per_rank(int threads);
 
 /// Parse "a,b,c" into doubles; throws hgrid::InputError naming `field`.
 std::vector<double> parse_list(const std::string& text, const std::string& field);

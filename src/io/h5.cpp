@@ -62,26 +62,23 @@ std::string h5_read_string_attr(hid_t obj, const char* name, const std::string& 
   return s;
 }
 
-std::vector<double> h5_read_dataset(hid_t file, const char* name, std::vector<hsize_t>& dims, const std::string& path,
-                                    std::uint64_t max_values) {
+std::vector<double> h5_read_rows(hid_t file, const char* name, hsize_t first, hsize_t count, int cols,
+                                 const std::string& path) {
   H5Handle ds{H5Dopen2(file, name, H5P_DEFAULT), H5Dclose};
   if (ds.id < 0) throw InputError(name, "dataset missing in " + path);
-  H5Handle sp{H5Dget_space(ds.id), H5Sclose};
-  const int rank = H5Sget_simple_extent_ndims(sp.id);
-  if (rank < 1 || rank > 2) throw InputError(name, "dataset must have rank 1 or 2 in " + path);
-  dims.assign(rank, 0);
-  H5Sget_simple_extent_dims(sp.id, dims.data(), nullptr);
-  hsize_t n = 1;
-  for (auto v : dims) {
-    if (v != 0 && n > max_values / v)
-      throw InputError(name, "dataset declares more values than allowed (" + std::to_string(max_values) + ") in " + path);
-    n *= v;
-  }
   H5Handle t{H5Dget_type(ds.id), H5Tclose};
   const H5T_class_t cls = H5Tget_class(t.id);
   if (cls != H5T_FLOAT && cls != H5T_INTEGER) throw InputError(name, "dataset is not numeric in " + path);
-  std::vector<double> out(n);
-  if (n > 0 && H5Dread(ds.id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+  std::vector<double> out(count * static_cast<hsize_t>(cols));
+  if (count == 0) return out;
+  H5Handle file_space{H5Dget_space(ds.id), H5Sclose};
+  const hsize_t start[2] = {first, 0}, size[2] = {count, static_cast<hsize_t>(cols)};
+  const int rank = cols == 1 ? 1 : 2;
+  if (H5Sselect_hyperslab(file_space.id, H5S_SELECT_SET, start, nullptr, size, nullptr) < 0)
+    throw InputError(name, "rows " + std::to_string(first) + " to " + std::to_string(first + count) +
+                               " are not in the dataset of " + path);
+  H5Handle mem_space{H5Screate_simple(rank, size, nullptr), H5Sclose};
+  if (H5Dread(ds.id, H5T_NATIVE_DOUBLE, mem_space.id, file_space.id, H5P_DEFAULT, out.data()) < 0)
     throw InputError(name, "could not read dataset (truncated or corrupt file?) in " + path);
   return out;
 }

@@ -33,10 +33,10 @@ void h5_silence();
 
 std::vector<double> h5_read_double_attr(hid_t obj, const char* name, const std::string& file);
 std::string h5_read_string_attr(hid_t obj, const char* name, const std::string& file);
-/// Reads a numeric dataset of rank 1 or 2 as doubles. A dataset declaring more
-/// than max_values values is refused before anything is allocated.
-std::vector<double> h5_read_dataset(hid_t file, const char* name, std::vector<hsize_t>& dims, const std::string& path,
-                                    std::uint64_t max_values);
+/// Rows [first, first + count) of a numeric dataset of `cols` columns (rank
+/// 1 when cols is 1, else N x cols; checked by the caller) as doubles.
+std::vector<double> h5_read_rows(hid_t file, const char* name, hsize_t first, hsize_t count, int cols,
+                                 const std::string& path);
 
 /// Whether obj has an attribute of that name (no attribute is iterated).
 bool h5_has_attr(hid_t obj, const char* name);

@@ -42,7 +42,7 @@ const char* const kNumberAttrs[] = {"seed", "n", "nu", "alpha", "omega", "sigma"
 
 /// Declared values of a dataset, checked against what the file stores and
 /// against the memory available, before anything is allocated.
-hsize_t declared_rows(hid_t file, const char* name, int cols, const std::string& path) {
+hsize_t declared_rows(hid_t file, const char* name, int cols, const std::string& path, hsize_t parts = 1) {
   H5Handle ds{H5Dopen2(file, name, H5P_DEFAULT), H5Dclose};
   if (ds.id < 0) throw InputError(name + 1, "dataset missing in " + path);
   H5Handle sp{H5Dget_space(ds.id), H5Sclose};
@@ -54,7 +54,7 @@ hsize_t declared_rows(hid_t file, const char* name, int cols, const std::string&
   H5Sget_simple_extent_dims(sp.id, dims, nullptr);
   if (rank == 2 && dims[1] != static_cast<hsize_t>(cols))
     throw InputError(name + 1, "dataset must be N x " + std::to_string(cols) + " in " + path);
-  check_memory(name + 1, dims[0], kReadBytesPerParticle, "reading a packing");
+  check_memory(name + 1, (dims[0] + parts - 1) / parts, kReadBytesPerParticle, "reading a packing");
   // Without filters (compression) a dataset stores every value it declares:
   // a smaller storage is a truncated or forged file.
   H5Handle dcpl{H5Dget_create_plist(ds.id), H5Pclose};
@@ -66,7 +66,10 @@ hsize_t declared_rows(hid_t file, const char* name, int cols, const std::string&
   return dims[0];
 }
 
-Packing read_h5(const std::string& path) {
+/// Part `part` of `parts` of the rows of an HDF5 packing (rows [first, first
+/// + count), read by hyperslab), with the file's attributes; total = N.
+Packing read_h5_rows(const std::string& path, std::uint64_t part, std::uint64_t parts, std::uint64_t& first,
+                     std::uint64_t& total) {
   std::lock_guard<std::recursive_mutex> lock(h5_mutex());
   h5_silence();
   if (H5Fis_hdf5(path.c_str()) <= 0) throw InputError("file", "'" + path + "' is not a readable HDF5 file");
@@ -84,12 +87,14 @@ Packing read_h5(const std::string& path) {
     throw InputError("box", "attribute must have d = " + std::to_string(p.d) + " values in " + path);
   for (int a = 0; a < p.d; ++a) p.box[a] = box[a];
   p.boundary = parse_boundary(h5_read_string_attr(root.id, "boundary", path));
-  const hsize_t n = declared_rows(f.id, "/positions", p.d, path);
-  if (declared_rows(f.id, "/radii", 1, path) != n)
+  const hsize_t n = declared_rows(f.id, "/positions", p.d, path, parts);
+  if (declared_rows(f.id, "/radii", 1, path, parts) != n)
     throw InputError("radii", "dataset must have N = " + std::to_string(n) + " values in " + path);
-  std::vector<hsize_t> dims;
-  p.positions = h5_read_dataset(f.id, "/positions", dims, path, n * p.d);
-  p.radii = h5_read_dataset(f.id, "/radii", dims, path, n);
+  total = n;
+  first = n * part / parts;
+  const hsize_t count = n * (part + 1) / parts - first;
+  p.positions = h5_read_rows(f.id, "/positions", first, count, p.d, path);
+  p.radii = h5_read_rows(f.id, "/radii", first, count, 1, path);
   for (const char* name : kStringAttrs)
     if (h5_has_attr(root.id, name)) p.str_attrs[name] = h5_read_string_attr(root.id, name, path);
   for (const char* name : kNumberAttrs)
@@ -98,6 +103,11 @@ Packing read_h5(const std::string& path) {
       if (v.size() == 1) p.num_attrs[name] = v[0];
     }
   return p;
+}
+
+Packing read_h5(const std::string& path) {
+  std::uint64_t first = 0, total = 0;
+  return read_h5_rows(path, 0, 1, first, total);
 }
 
 // ---- HDF5 in a child process ------------------------------------------------
@@ -246,6 +256,24 @@ Packing parse_packing_csv(std::istream& in, const std::string& name) {
 
 Packing read_hdf5_packing(const std::string& path, Isolation isolation) {
   return isolation == Isolation::child_process ? read_h5_in_child(path) : read_h5(path);
+}
+
+Packing read_packing_part(const std::string& path, std::uint64_t part, std::uint64_t parts, std::uint64_t& first,
+                          std::uint64_t& total) {
+  if (parts < 1 || part >= parts) throw InputError("part", "must be below the number of parts");
+  if (!hdf5_file(path)) {
+    Packing all = read_packing(path, Isolation::none);
+    total = all.size();
+    first = total * part / parts;
+    const std::uint64_t end = total * (part + 1) / parts;
+    all.radii = std::vector<double>(all.radii.begin() + first, all.radii.begin() + end);
+    all.positions = std::vector<double>(all.positions.begin() + first * all.d, all.positions.begin() + end * all.d);
+    return all;
+  }
+  if (!std::filesystem::exists(path)) throw InputError("file", "'" + path + "' does not exist");
+  Packing p = read_h5_rows(path, part, parts, first, total);
+  validate(p, first);
+  return p;
 }
 
 Packing read_packing(const std::string& path, Isolation isolation) {

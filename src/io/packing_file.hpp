@@ -1,5 +1,6 @@
 // Packing files: read any supported format, write HDF5 with provenance.
 #pragma once
+#include <cstdint>
 #include <istream>
 #include <string>
 
@@ -22,6 +23,15 @@ inline constexpr double kIsolatedReadBaseSeconds = 5;
 /// validates it (see validate()) and returns it. Throws InputError naming the
 /// field that is wrong.
 Packing read_packing(const std::string& path, Isolation isolation = Isolation::none);
+
+/// Part `part` of `parts` (0-based) of a packing file: its rows [first,
+/// first + count) with first = N part / parts, validated like read_packing
+/// (messages name the file's particle index); total receives N. An HDF5
+/// file is read by hyperslab: only those rows are read, so that each of P
+/// processes holds its own part of a file too large for one of them. The
+/// text formats are read whole, then cut. Not isolated (Isolation::none).
+Packing read_packing_part(const std::string& path, std::uint64_t part, std::uint64_t parts, std::uint64_t& first,
+                          std::uint64_t& total);
 
 /// Reads a packing from text in any of the text formats; `name` names the
 /// source in messages.

@@ -34,6 +34,8 @@ bool active();
 /// This process's rank and the number of ranks (0 and 1 without MPI).
 int rank();
 int size();
+/// Ranks of this run on this machine (1 without MPI).
+int local_size();
 
 /// Waits for every rank.
 void barrier();
@@ -66,7 +68,7 @@ void exchange_items(const void* send, const std::vector<std::uint64_t>& send_cou
 /// rank 0, then counts[1] for rank 1, ... (counts has size() entries).
 /// Returns what every rank sent to this one, in rank order.
 template <class T>
-std::vector<T> exchange(const std::vector<T>& items, const std::vector<std::uint64_t>& counts) {
+std::vector<T> all_to_all(const std::vector<T>& items, const std::vector<std::uint64_t>& counts) {
   static_assert(std::is_trivially_copyable_v<T>);
   const std::vector<std::uint64_t> recv_counts = detail::exchange_counts(counts);
   std::uint64_t total = 0;

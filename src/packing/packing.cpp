@@ -21,7 +21,7 @@ double Packing::packing_fraction() const {
   return vol / box_vol;
 }
 
-void validate(Packing& p) {
+void validate(Packing& p, std::uint64_t first_index) {
   if (p.d != 2 && p.d != 3) throw InputError("d", "must be 2 or 3 (got " + std::to_string(p.d) + ")");
   for (int a = 0; a < p.d; ++a)
     if (!(std::isfinite(p.box[a]) && p.box[a] > 0))
@@ -31,19 +31,19 @@ void validate(Packing& p) {
                                       " values, got " + std::to_string(p.positions.size()));
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (!(std::isfinite(p.radii[i]) && p.radii[i] > 0))
-      throw InputError("radius", "particle " + std::to_string(i) + " has radius " + std::to_string(p.radii[i]) +
+      throw InputError("radius", "particle " + std::to_string(i + first_index) + " has radius " + std::to_string(p.radii[i]) +
                                      " (must be finite and > 0)");
     if (!std::isfinite(ball_volume(p.d, p.radii[i])))
-      throw InputError("radius", "particle " + std::to_string(i) + " has radius " + std::to_string(p.radii[i]) +
+      throw InputError("radius", "particle " + std::to_string(i + first_index) + " has radius " + std::to_string(p.radii[i]) +
                                      " (its volume overflows)");
     for (int a = 0; a < p.d; ++a) {
       double& x = p.positions[i * p.d + a];
       if (!std::isfinite(x))
-        throw InputError("position", "particle " + std::to_string(i) + " has a non-finite coordinate");
+        throw InputError("position", "particle " + std::to_string(i + first_index) + " has a non-finite coordinate");
       if (p.boundary == Boundary::periodic) {
         x = detail::wrap(x, p.box[a]);
       } else if (x < 0 || x > p.box[a]) {
-        throw InputError("position", "particle " + std::to_string(i) + " has its centre outside the walled box [0, " +
+        throw InputError("position", "particle " + std::to_string(i + first_index) + " has its centre outside the walled box [0, " +
                                          std::to_string(p.box[a]) + "] on axis " + std::to_string(a + 1));
       }
     }

@@ -43,8 +43,9 @@ struct Packing {
 };
 
 /// Checks a packing (d, box, radii > 0, finite values, centres inside a walled
-/// box) and wraps periodic centres into [0, A). Throws InputError naming the field.
-void validate(Packing& p);
+/// box) and wraps periodic centres into [0, A). Throws InputError naming the
+/// field; particle k is named as k + first_index (a part of a larger file).
+void validate(Packing& p, std::uint64_t first_index = 0);
 
 /// The most particles a packing may hold: a grid holds at most 2^31 - 1.
 inline constexpr std::uint64_t kMaxParticles = (std::uint64_t{1} << 31) - 1;

@@ -12,7 +12,7 @@ namespace hgrid::mpi {
 namespace {
 
 bool g_active = false;
-int g_rank = 0, g_size = 1;
+int g_rank = 0, g_size = 1, g_local_size = 1;
 
 int as_int(std::uint64_t n, const char* what) {
   if (n > static_cast<std::uint64_t>(INT_MAX))
@@ -40,6 +40,10 @@ Session::Session(int& argc, char**& argv) {
   g_active = true;
   MPI_Comm_rank(MPI_COMM_WORLD, &g_rank);
   MPI_Comm_size(MPI_COMM_WORLD, &g_size);
+  MPI_Comm node;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  MPI_Comm_size(node, &g_local_size);
+  MPI_Comm_free(&node);
 }
 
 Session::~Session() {
@@ -50,6 +54,7 @@ Session::~Session() {
 bool active() { return g_active; }
 int rank() { return g_rank; }
 int size() { return g_size; }
+int local_size() { return g_local_size; }
 
 void barrier() {
   if (g_active) MPI_Barrier(MPI_COMM_WORLD);
