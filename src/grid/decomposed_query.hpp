@@ -37,8 +37,11 @@ RankCounts query_reported_pairs(const HGrid<D, B>& grid, std::span<const Sphere<
   RankCounts out;
   out.work = grid.template query<S, Count>(
       [&](int t, std::uint32_t i, std::uint32_t j) {
-        const bool i_first = reports_before(spheres[i].r, ids[i], spheres[j].r, ids[j]);
-        if ((i_first ? i : j) >= n_owned) return;  // the lower one's owner reports it
+        // Two own particles: reported here, no look-up needed (most pairs).
+        if (i >= n_owned || j >= n_owned) {
+          const bool i_first = reports_before(spheres[i].r, ids[i], spheres[j].r, ids[j]);
+          if ((i_first ? i : j) >= n_owned) return;  // the lower one's owner reports it
+        }
         ++reported[static_cast<std::size_t>(t) * 8];
         const std::uint64_t a = ids[i] < ids[j] ? ids[i] : ids[j];
         const std::uint64_t b = ids[i] < ids[j] ? ids[j] : ids[i];

@@ -3,7 +3,7 @@
 // the rule that reports every overlapping pair on exactly one rank. No MPI
 // here: the tool's transport (src/mpi) and the tests use the same rules.
 //
-// The rule (docs/MODEL.md section 11). Order the particles by (r, global
+// The rule (docs/MODEL.md section 10). Order the particles by (r, global
 // index). A pair is reported by the rank that owns the pair's lower
 // particle a. Its partner b has r_b >= r_a, so |x_a - x_b| < r_a + r_b <=
 // 2 r_b: b lies within 2 r_b of a's brick. Hence a particle of radius r is
@@ -100,12 +100,26 @@ class Bricks {
   /// closer than `reach` to x (periodic: its nearest image).
   template <class F>
   void for_each_within(const std::array<double, D>& x, double reach, int self, F&& f) const {
-    // Per axis: the bricks within reach and their distance.
-    std::array<std::vector<std::pair<int, double>>, D> near;
+    // Most particles are farther than their reach from every face of their
+    // own brick: then no other brick is within reach (periodic images lie
+    // beyond the faces too).
+    std::array<double, D> xs;
+    bool inside = true;
     for (int a = 0; a < D; ++a) {
+      xs[a] = boundary_ == Boundary::periodic ? detail::wrap(x[a], box_[a]) : x[a];
+      if (dims_[a] == 1) continue;
+      const int b = index(a, xs[a]);
+      inside = inside && xs[a] - reach > lo(a, b) && xs[a] + reach < hi(a, b);
+    }
+    if (inside) return;
+    // Per axis: the bricks within reach and their distance (buffers kept
+    // per thread: no allocation per call; so f must not call this again).
+    thread_local std::array<std::vector<std::pair<int, double>>, D> near;
+    for (int a = 0; a < D; ++a) {
+      near[a].clear();
       const int n = dims_[a];
       const double w = box_[a] / n;
-      const double xa = boundary_ == Boundary::periodic ? detail::wrap(x[a], box_[a]) : x[a];
+      const double xa = xs[a];
       const auto first = static_cast<std::int64_t>(std::floor((xa - reach) / w)) - 1;
       const auto last = static_cast<std::int64_t>(std::floor((xa + reach) / w)) + 1;
       const bool all = last - first + 1 >= n;

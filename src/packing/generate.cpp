@@ -159,7 +159,9 @@ std::unique_ptr<Distribution> recorded_distribution(const Packing& p) {
 
 double check_packing_spec(const PackingSpec& s) {
   check_spec(s);
-  check_memory("n", s.n, kGenerateBytesPerParticle, "generating a packing");
+  check_memory("n", s.n,
+               s.placement == Placement::random ? kGenerateRandomBytesPerParticle : kGenerateBytesPerParticle,
+               "generating a packing");
   const auto dist = make_distribution(s);
   const double rcp = estimate_rcp(s.d, *dist);
   if (s.placement == Placement::excluded && s.nu > rcp)

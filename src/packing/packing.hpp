@@ -52,10 +52,12 @@ inline constexpr std::uint64_t kMaxParticles = (std::uint64_t{1} << 31) - 1;
 
 /// Peak memory per particle of the heavy steps, measured with bench_generate
 /// and bench_hgrid (3D, N = 10^5 to 10^6) and rounded up: reading a packing
-/// file, generating a packing (growth + FIRE peaks at ~410 B), and building
-/// and searching a grid on a packing read from a file.
+/// file, generating a packing (growth + FIRE peaks at ~410 B; random centres
+/// at ~41 B, N = 10^7), and building and searching a grid on a packing read
+/// from a file.
 inline constexpr double kReadBytesPerParticle = 64;
 inline constexpr double kGenerateBytesPerParticle = 512;
+inline constexpr double kGenerateRandomBytesPerParticle = 64;
 inline constexpr double kSearchBytesPerParticle = 256;
 
 /// Memory this process may still use: MemAvailable of /proc/meminfo (else
