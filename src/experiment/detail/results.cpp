@@ -14,7 +14,7 @@
 #include "io/provenance.hpp"
 #include "io/atomic_file.hpp"
 
-namespace hgrid::detail {
+namespace hgrid {
 namespace {
 
 /// JSON has no NaN: unrecorded values travel as null.
@@ -29,7 +29,7 @@ std::string utc_now() {
 
 }  // namespace
 
-nlohmann::json result_to_json(const PointResult& r) {
+nlohmann::json detail::result_to_json(const PointResult& r) {
   const PackingSpec& s = r.point.packing;
   const Counters& c = r.counts;
   return {{"d", s.d},
@@ -108,7 +108,7 @@ std::vector<std::uint64_t> counts_of(const nlohmann::json& j, const char* key) {
 
 }  // namespace
 
-PointResult result_from_json(const nlohmann::json& j) {
+PointResult detail::result_from_json(const nlohmann::json& j) {
   PointResult r;
   PackingSpec& s = r.point.packing;
   s.d = static_cast<int>(count_of(j, "d"));
@@ -159,7 +159,7 @@ PointResult result_from_json(const nlohmann::json& j) {
   return r;
 }
 
-void check_result(const PointResult& r, double K) {
+void detail::check_result(const PointResult& r, double K) {
   const Counters& c = r.counts;
   const auto L = static_cast<std::size_t>(c.levels);
   if (c.levels < 1 || r.sizes.size() != L || c.particles_per_level.size() != L || c.accesses_by_level.size() != L ||
@@ -220,24 +220,32 @@ void write_csv(const std::string& path, const Scene& scene, const std::vector<nl
 
 }  // namespace
 
+std::string result_json_line(const PointResult& r) { return detail::result_to_json(r).dump(); }
+
+PointResult result_from_json_line(const std::string& line, double K) {
+  PointResult r = detail::result_from_json(nlohmann::json::parse(line));
+  detail::check_result(r, K);
+  return r;
+}
+
 void write_results(const std::string& stem, const Scene& scene, const std::vector<PointResult>& results) {
   std::vector<nlohmann::json> rows;
   std::size_t lmax = 0;
   for (const auto& r : results) {
-    rows.push_back(result_to_json(r));
+    rows.push_back(detail::result_to_json(r));
     lmax = std::max<std::size_t>(lmax, r.counts.levels);
   }
   const hsize_t P = rows.size(), L = lmax;
-  h5_write_file(stem + ".h5", [&](hid_t f) {
+  detail::h5_write_file(stem + ".h5", [&](hid_t f) {
     for (const char* c : kNumericColumns) {
       std::vector<double> v;
       for (const auto& j : rows) v.push_back(j.at(c).is_null() ? std::nan("") : j.at(c).get<double>());
-      h5_write_dataset(f, c, v, {P});
+      detail::h5_write_dataset(f, c, v, {P});
     }
     for (const char* c : kTextColumns) {
       std::vector<std::string> v;
       for (const auto& j : rows) v.push_back(j.at(c));
-      h5_write_strings(f, c, v);
+      detail::h5_write_strings(f, c, v);
     }
     // Per level (padded: NaN sizes, zero counts beyond a point's own L).
     std::vector<double> sizes(P * L, std::nan(""));
@@ -254,24 +262,24 @@ void write_results(const std::string& stem, const Scene& scene, const std::vecto
         }
       }
     }
-    h5_write_dataset(f, "sizes", sizes, {P, L});
-    h5_write_dataset(f, "particles_per_level", particles, {P, L});
-    h5_write_dataset(f, "accesses_by_level", acc, {P, L, L});
-    h5_write_dataset(f, "checks_by_level", chk, {P, L, L});
-    H5Handle root{H5Gopen2(f, "/", H5P_DEFAULT), H5Gclose};
-    h5_write_attr(root.id, "scene", scene.name);
-    h5_write_attr(root.id, "description", scene.description);
-    h5_write_attr(root.id, "scale", scene.scale);
-    h5_write_attr(root.id, "scene_toml", scene.source);
-    h5_write_attr(root.id, "cells", std::string(to_string(scene.grid.cells)));
-    h5_write_attr(root.id, "K", std::vector<double>{scene.grid.K});
-    h5_write_attr(root.id, "q", std::vector<double>{scene.grid.q});
-    h5_write_attr(root.id, "levels_requested", std::vector<double>{scene.grid.levels ? *scene.grid.levels : 0.0});
-    for (const auto& [k, v] : provenance_fields()) h5_write_attr(root.id, k, v);
-    h5_write_attr(root.id, "created_utc", utc_now());
-    h5_write_attr(root.id, "matrix_layout", std::string("[point][level of the particle][level searched]"));
+    detail::h5_write_dataset(f, "sizes", sizes, {P, L});
+    detail::h5_write_dataset(f, "particles_per_level", particles, {P, L});
+    detail::h5_write_dataset(f, "accesses_by_level", acc, {P, L, L});
+    detail::h5_write_dataset(f, "checks_by_level", chk, {P, L, L});
+    detail::H5Handle root{H5Gopen2(f, "/", H5P_DEFAULT), H5Gclose};
+    detail::h5_write_attr(root.id, "scene", scene.name);
+    detail::h5_write_attr(root.id, "description", scene.description);
+    detail::h5_write_attr(root.id, "scale", scene.scale);
+    detail::h5_write_attr(root.id, "scene_toml", scene.source);
+    detail::h5_write_attr(root.id, "cells", std::string(to_string(scene.grid.cells)));
+    detail::h5_write_attr(root.id, "K", std::vector<double>{scene.grid.K});
+    detail::h5_write_attr(root.id, "q", std::vector<double>{scene.grid.q});
+    detail::h5_write_attr(root.id, "levels_requested", std::vector<double>{scene.grid.levels ? *scene.grid.levels : 0.0});
+    for (const auto& [k, v] : provenance_fields()) detail::h5_write_attr(root.id, k, v);
+    detail::h5_write_attr(root.id, "created_utc", utc_now());
+    detail::h5_write_attr(root.id, "matrix_layout", std::string("[point][level of the particle][level searched]"));
   });
   write_csv(stem + ".csv", scene, rows);
 }
 
-}  // namespace hgrid::detail
+}  // namespace hgrid

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "experiment/result_files.hpp"
 #include "experiment/runner.hpp"
 
 namespace hgrid::detail {
@@ -17,10 +18,5 @@ PointResult result_from_json(const nlohmann::json& j);
 /// list, the lists adding up to n, accesses and checks, and T/N equal to
 /// (checks + K accesses) / n. Throws InputError naming the field.
 void check_result(const PointResult& r, double K);
-
-/// Writes <stem>.h5 (raw counts per point and level, model values, the
-/// parameters, seeds, scene text, git hash, compiler, timings) and <stem>.csv
-/// (one row per point, named columns for gnuplot); both atomically.
-void write_results(const std::string& stem, const Scene& scene, const std::vector<PointResult>& results);
 
 }  // namespace hgrid::detail
