@@ -95,9 +95,10 @@ std::string text_of(const nlohmann::json& j, const char* key) {
   if (!v.is_string()) throw InputError(key, "must be a string");
   return v.get<std::string>();
 }
-std::vector<std::uint64_t> counts_of(const nlohmann::json& j, const char* key) {
+/// A list of at most max_size counts (L per level, or L x L by level pairs).
+std::vector<std::uint64_t> counts_of(const nlohmann::json& j, const char* key, std::size_t max_size) {
   const auto& v = field(j, key);
-  if (!v.is_array() || v.size() > static_cast<std::size_t>(kMaxLevels)) throw InputError(key, "must be a list of counts");
+  if (!v.is_array() || v.size() > max_size) throw InputError(key, "must be a list of counts");
   std::vector<std::uint64_t> out;
   for (const auto& e : v) {
     if (!e.is_number_unsigned()) throw InputError(key, "must be a list of whole numbers >= 0");
@@ -137,9 +138,10 @@ PointResult detail::result_from_json(const nlohmann::json& j) {
   c.cell_accesses = count_of(j, "cell_accesses");
   c.narrow_phase_checks = count_of(j, "narrow_phase_checks");
   c.contacts = count_of(j, "contacts");
-  c.particles_per_level = counts_of(j, "particles_per_level");
-  c.accesses_by_level = counts_of(j, "accesses_by_level");
-  c.checks_by_level = counts_of(j, "checks_by_level");
+  constexpr auto kLevels = static_cast<std::size_t>(kMaxLevels);
+  c.particles_per_level = counts_of(j, "particles_per_level", kLevels);
+  c.accesses_by_level = counts_of(j, "accesses_by_level", kLevels * kLevels);
+  c.checks_by_level = counts_of(j, "checks_by_level", kLevels * kLevels);
   r.T_over_N = finite_of(j, "T_over_N");
   r.T_cd_over_N = finite_of(j, "T_cd_over_N");
   r.T_ca_over_N = finite_of(j, "T_ca_over_N");
@@ -162,15 +164,15 @@ PointResult detail::result_from_json(const nlohmann::json& j) {
 void detail::check_result(const PointResult& r, double K) {
   const Counters& c = r.counts;
   const auto L = static_cast<std::size_t>(c.levels);
-  if (c.levels < 1 || r.sizes.size() != L || c.particles_per_level.size() != L || c.accesses_by_level.size() != L ||
-      c.checks_by_level.size() != L)
-    throw InputError("levels", "the per-level lists do not have one entry per level");
+  // Sizes and particles per level; accesses and checks per pair of levels
+  // (particle's level x level searched, Counters).
+  if (c.levels < 1 || r.sizes.size() != L || c.particles_per_level.size() != L ||
+      c.accesses_by_level.size() != L * L || c.checks_by_level.size() != L * L)
+    throw InputError("levels", "the per-level lists do not have one entry per level (L x L by level pairs)");
   std::uint64_t n = 0, acc = 0, chk = 0;
-  for (std::size_t h = 0; h < L; ++h) {
-    n += c.particles_per_level[h];
-    acc += c.accesses_by_level[h];
-    chk += c.checks_by_level[h];
-  }
+  for (std::uint64_t v : c.particles_per_level) n += v;
+  for (std::uint64_t v : c.accesses_by_level) acc += v;
+  for (std::uint64_t v : c.checks_by_level) chk += v;
   if (n != r.n || r.n != r.point.packing.n) throw InputError("particles_per_level", "does not add up to n");
   if (acc != c.cell_accesses) throw InputError("accesses_by_level", "does not add up to cell_accesses");
   if (chk != c.narrow_phase_checks) throw InputError("checks_by_level", "does not add up to narrow_phase_checks");

@@ -14,9 +14,9 @@ nlohmann::json result_to_json(const PointResult& r);
 /// input: InputError naming the field for a wrong type, sign or range.
 PointResult result_from_json(const nlohmann::json& j);
 
-/// Checks a result's counts against each other: one entry per level in every
-/// list, the lists adding up to n, accesses and checks, and T/N equal to
+/// Checks a result's counts against each other: one entry per level (sizes,
+/// particles) or per pair of levels (accesses, checks), the lists adding up
+/// to n, accesses and checks, and T/N equal to
 /// (checks + K accesses) / n. Throws InputError naming the field.
 void check_result(const PointResult& r, double K);
-
 }  // namespace hgrid::detail
