@@ -10,6 +10,7 @@
 #include "experiment/result_files.hpp"
 #include "experiment/runner.hpp"
 #include "grid/error.hpp"
+#include "mpi/sweep.hpp"
 
 namespace hgrid {
 namespace {
@@ -25,9 +26,10 @@ class Journal : public ::testing::Test {
     opt_.packing_dir = (dir_ / "packings").string();
     opt_.progress = false;
     // Wide radii, so that every point has several levels.
-    scene_ = load_scene_text("name = \"j\"\n[packings]\nn = 1500\nnu = 0.3\nomega = 50\nseeds = [1, 2]\n"
-                             "[grid]\nsearch = [\"topdown\", \"bottomup\"]\n",
-                             "default", "j.toml");
+    scene_ = load_scene_text(
+        "name = \"j\"\n[packings]\nn = 1500\nnu = 0.3\nomega = 50\nseeds = [1, 2]\n"
+        "[grid]\nsearch = [\"topdown\", \"bottomup\"]\n",
+        "default", "j.toml");
   }
   void TearDown() override { fs::remove_all(dir_); }
 
@@ -95,6 +97,28 @@ TEST_F(Journal, ResultLinesRoundTripExactly) {
   EXPECT_EQ(back.model_T_over_N, r.model_T_over_N);
   EXPECT_EQ(back.seconds_query, r.seconds_query);
   EXPECT_THROW(result_from_json_line(result_json_line(r), scene_.grid.K * 2), InputError);  // T/N disagrees
+}
+
+TEST_F(Journal, GroupsKeepAPackingOnOneRankAndBalanceTheWork) {
+  const auto groups = group_by_packing(scene_, {0, 1, 2, 3});
+  ASSERT_EQ(groups.size(), 2u);  // two seeds, two searches each
+  EXPECT_EQ(groups[0], (std::vector<std::size_t>{0, 1}));
+  // Five groups of 1, 1, 3, 1, 2 points of one n: the largest first, each
+  // to the rank with the least work so far.
+  Scene s = scene_;
+  const ScenePoint p = s.points[0];
+  s.points.assign(8, p);
+  const std::vector<std::vector<std::size_t>> five{{0}, {1}, {2, 3, 4}, {5}, {6, 7}};
+  EXPECT_EQ(mpi::assign_groups(s, five, 2), (std::vector<int>{1, 0, 0, 1, 1}));
+  EXPECT_EQ(mpi::assign_groups(s, five, 1), (std::vector<int>{0, 0, 0, 0, 0}));
+  EXPECT_EQ(mpi::assign_groups(s, five, 8), (std::vector<int>{2, 3, 0, 4, 1}));
+}
+
+TEST_F(Journal, OneRankSweepIsTheSerialRun) {
+  const std::vector<PointResult> serial = run_scene(scene_, opt_);
+  opt_.results_dir = (dir_ / "res1").string();
+  expect_same_counts(mpi::run_scene_on_ranks(scene_, opt_), serial);
+  EXPECT_TRUE(fs::exists(dir_ / "res1" / "j.csv"));
 }
 
 }  // namespace
