@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <mutex>
@@ -12,6 +11,8 @@
 #include <thread>
 
 #include "experiment/detail/results.hpp"
+#include "experiment/journal.hpp"
+#include "experiment/result_files.hpp"
 #include "io/atomic_file.hpp"
 #include "grid/dispatch.hpp"
 #include "model/distribution.hpp"
@@ -27,9 +28,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-/// Identifies a point within a scene for the resume journal.
-std::string point_key(const ScenePoint& p) { return packing_key(p.packing) + to_string(p.search); }
 
 }  // namespace
 
@@ -97,64 +95,28 @@ std::string result_stem(const Scene& scene, const RunOptions& opt) {
   return (std::filesystem::path(opt.results_dir) / (scene.name + suffix)).string();
 }
 
-std::vector<PointResult> run_scene(const Scene& scene, const RunOptions& opt) {
-  std::filesystem::create_directories(opt.results_dir);
-  const std::string stem = result_stem(scene, opt);
-  const std::string journal = stem + ".journal.jsonl";
-  // Temporary files of runs killed before they could remove them.
-  for (const auto& dir : {opt.results_dir, opt.packing_dir}) remove_stale_temporaries(dir, kStaleTemporaryAge);
-
-  // Resume: points measured by an interrupted run of the same scene text.
-  std::map<std::string, PointResult> done;
-  if (std::ifstream in(journal); in) {
-    std::size_t lineno = 0;
-    for (std::string line; std::getline(in, line);) {
-      ++lineno;
-      try {
-        const auto j = nlohmann::json::parse(line);
-        if (!j.is_object() || !j.contains("source") || j.at("source") != scene.source) continue;
-        PointResult r = detail::result_from_json(j.at("result"));
-        detail::check_result(r, scene.grid.K);
-        done[point_key(r.point)] = r;
-      } catch (const std::exception& e) {
-        // A line cut short by the interruption, or one changed by hand: that
-        // point is measured again.
-        if (opt.progress)
-          std::cerr << "hgrid run: " << journal << ":" << lineno << " not used (" << e.what()
-                    << "); that point is measured again\n";
-      }
-    }
-  }
-  std::vector<PointResult> results(scene.points.size());
-  std::vector<std::size_t> todo;
-  for (std::size_t i = 0; i < scene.points.size(); ++i) {
-    auto it = done.find(point_key(scene.points[i]));
-    if (it != done.end()) {
-      results[i] = it->second;
-    } else {
-      todo.push_back(i);
-    }
-  }
-  if (opt.progress && todo.size() < scene.points.size())
-    std::cerr << "hgrid run: " << scene.points.size() - todo.size() << " of " << scene.points.size()
-              << " points reused from " << journal << "\n";
-
-  // Points sharing a packing go to one worker, so it is generated once.
+std::vector<std::vector<std::size_t>> group_by_packing(const Scene& scene, const std::vector<std::size_t>& todo) {
   std::vector<std::vector<std::size_t>> groups;
-  {
-    std::map<std::string, std::size_t> group_of;
-    for (std::size_t i : todo) {
-      auto [it, fresh] = group_of.emplace(packing_key(scene.points[i].packing), groups.size());
-      if (fresh) groups.emplace_back();
-      groups[it->second].push_back(i);
-    }
+  std::map<std::string, std::size_t> group_of;
+  for (std::size_t i : todo) {
+    auto [it, fresh] = group_of.emplace(packing_key(scene.points[i].packing), groups.size());
+    if (fresh) groups.emplace_back();
+    groups[it->second].push_back(i);
   }
+  return groups;
+}
+
+std::optional<PointFailure> measure_groups(const Scene& scene, const std::vector<std::vector<std::size_t>>& groups,
+                                           const RunOptions& opt, const std::string& journal, const std::string& what,
+                                           std::vector<PointResult>& results) {
+  std::size_t total = 0;
+  for (const auto& g : groups) total += g.size();
   std::mutex mu;
-  std::ofstream jout;  // opened with the first result: a run that fails first leaves no journal
+  JournalWriter jout(journal, scene.source);
   std::atomic<std::size_t> next{0};
   std::size_t finished = 0;
-  std::exception_ptr failure;
-  Progress progress(opt.progress, "hgrid run " + scene.name, "points");
+  std::optional<PointFailure> failure;
+  Progress progress(opt.progress, what, "points");
   auto worker = [&] {
     for (;;) {
       const std::size_t g = next++;
@@ -168,16 +130,13 @@ std::vector<PointResult> run_scene(const Scene& scene, const RunOptions& opt) {
           PointResult r = run_point(scene, scene.points[i], opt);
           std::lock_guard<std::mutex> lock(mu);
           results[i] = r;
-          if (!jout.is_open()) jout.open(journal, std::ios::app);
-          jout << nlohmann::json{{"source", scene.source}, {"result", detail::result_to_json(r)}}.dump() << "\n";
-          jout.flush();
-          if (!jout) throw InputError("journal", "cannot write '" + journal + "' (disk full?)");
+          jout.append(r);
           ++finished;
-          progress.count(static_cast<double>(finished), static_cast<double>(todo.size()),
-                         std::to_string(finished) + "/" + std::to_string(todo.size()));
+          progress.count(static_cast<double>(finished), static_cast<double>(total),
+                         std::to_string(finished) + "/" + std::to_string(total));
         } catch (...) {
           std::lock_guard<std::mutex> lock(mu);
-          if (!failure) failure = std::current_exception();
+          if (!failure) failure = PointFailure{i, std::current_exception()};
           return;
         }
       }
@@ -188,12 +147,21 @@ std::vector<PointResult> run_scene(const Scene& scene, const RunOptions& opt) {
   for (int t = 1; t < jobs; ++t) pool.emplace_back(worker);
   worker();
   for (auto& t : pool) t.join();
-  jout.close();
-  if (failure) std::rethrow_exception(failure);
+  return failure;
+}
 
-  detail::write_results(stem, scene, results);
-  std::filesystem::remove(journal);
-  return results;
+std::vector<PointResult> run_scene(const Scene& scene, const RunOptions& opt) {
+  std::filesystem::create_directories(opt.results_dir);
+  const std::string stem = result_stem(scene, opt);
+  // Temporary files of runs killed before they could remove them.
+  for (const auto& dir : {opt.results_dir, opt.packing_dir}) remove_stale_temporaries(dir, kStaleTemporaryAge);
+  Resumed resumed = resume(scene, stem, opt.progress);
+  const auto failure = measure_groups(scene, group_by_packing(scene, resumed.todo), opt, journal_path(stem),
+                                      "hgrid run " + scene.name, resumed.results);
+  if (failure) std::rethrow_exception(failure->error);
+  write_results(stem, scene, resumed.results);
+  remove_journals(stem);
+  return resumed.results;
 }
 
 std::string results_json(const Scene& scene, const std::vector<PointResult>& results, const RunOptions& opt) {

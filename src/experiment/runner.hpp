@@ -1,5 +1,7 @@
 // Running a scene: packings -> counted HGrid search -> model, one row per point.
 #pragma once
+#include <exception>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,8 +38,29 @@ PointResult run_point(const Scene& scene, const ScenePoint& point, const RunOpti
 
 /// Runs every point of the scene and writes <results_dir>/<name>[-<scale>].h5
 /// and .csv (the default scale has no suffix). Points already measured by an
-/// interrupted run of the same scene and scale are reused from its journal.
+/// interrupted run of the same scene and scale (on any number of MPI ranks)
+/// are reused from its journals (experiment/journal.hpp).
 std::vector<PointResult> run_scene(const Scene& scene, const RunOptions& opt);
+
+/// The points of `todo` (indices into scene.points) by packing, each group
+/// in scene order, the groups in order of their first point: a group goes to
+/// one worker, so that its packing is generated (or read) once.
+std::vector<std::vector<std::size_t>> group_by_packing(const Scene& scene, const std::vector<std::size_t>& todo);
+
+/// The first point that failed in measure_groups(), and why.
+struct PointFailure {
+  std::size_t point;  // index into scene.points
+  std::exception_ptr error;
+};
+
+/// Measures the points of `groups` into results[i] (sized like
+/// scene.points) on opt.jobs threads, a whole group per thread, appending
+/// each finished point to the journal file `journal` (experiment/journal.hpp)
+/// and counting them on a progress line named `what`. After a failure no
+/// further point is started; the first failure is returned, not thrown.
+std::optional<PointFailure> measure_groups(const Scene& scene, const std::vector<std::vector<std::size_t>>& groups,
+                                           const RunOptions& opt, const std::string& journal, const std::string& what,
+                                           std::vector<PointResult>& results);
 
 /// Path of the result files without extension.
 std::string result_stem(const Scene& scene, const RunOptions& opt);

@@ -116,6 +116,19 @@ void read_record(const toml::table& t, SceneRecord& r) {
 
 }  // namespace
 
+std::string describe_point(const Scene& scene, std::size_t i) {
+  const PackingSpec& p = scene.points.at(i).packing;
+  std::ostringstream out;
+  out.precision(6);
+  out << "point " << i + 1 << " of " << scene.points.size() << " (d=" << p.d << " n=" << p.n << " nu=" << p.nu;
+  if (p.dist == "lognormal") out << " lognormal sigma=" << p.sigma;
+  else out << " alpha=" << p.alpha;
+  out << " omega=" << p.omega << " " << to_string(p.boundary) << " " << to_string(p.placement)
+      << (p.equilibrate ? " equilibrated" : "") << " seed=" << p.seed << ", " << to_string(scene.points[i].search)
+      << ")";
+  return out.str();
+}
+
 std::string scene_kind(const std::string& path) {
   const toml::table root = detail::read_scene_file(path).root;
   const std::string kind = root["kind"].value_or(std::string("contact"));

@@ -41,6 +41,10 @@ struct Scene {
   std::vector<ScenePoint> points;  // the cartesian product of the packing lists
 };
 
+/// Point i of a scene for messages: "point 3 of 16 (d=3 n=20000 nu=0.6
+/// alpha=-3 omega=100 walls random seed=7, bottomup)".
+std::string describe_point(const Scene& scene, std::size_t i);
+
 /// The scene's top-level `kind`: "contact" (default: one contact search per
 /// point, load_scene) or "dpm" (a discrete-element run, dpm/dpm_scene.hpp).
 std::string scene_kind(const std::string& path);

@@ -13,6 +13,8 @@ class InputError : public std::invalid_argument {
   InputError(const std::string& field, const std::string& problem)
       : std::invalid_argument(field + ": " + problem), field_(field) {}
   const std::string& field() const noexcept { return field_; }
+  /// The message without its "field: " prefix.
+  std::string problem() const { return std::string(what()).substr(field_.size() + 2); }
 
  private:
   std::string field_;

@@ -14,7 +14,7 @@
 #include "io/provenance.hpp"
 #include "io/atomic_file.hpp"
 
-namespace hgrid::detail {
+namespace hgrid {
 namespace {
 
 /// JSON has no NaN: unrecorded values travel as null.
@@ -29,7 +29,7 @@ std::string utc_now() {
 
 }  // namespace
 
-nlohmann::json result_to_json(const PointResult& r) {
+nlohmann::json detail::result_to_json(const PointResult& r) {
   const PackingSpec& s = r.point.packing;
   const Counters& c = r.counts;
   return {{"d", s.d},
@@ -95,9 +95,10 @@ std::string text_of(const nlohmann::json& j, const char* key) {
   if (!v.is_string()) throw InputError(key, "must be a string");
   return v.get<std::string>();
 }
-std::vector<std::uint64_t> counts_of(const nlohmann::json& j, const char* key) {
+/// A list of at most max_size counts (L per level, or L x L by level pairs).
+std::vector<std::uint64_t> counts_of(const nlohmann::json& j, const char* key, std::size_t max_size) {
   const auto& v = field(j, key);
-  if (!v.is_array() || v.size() > static_cast<std::size_t>(kMaxLevels)) throw InputError(key, "must be a list of counts");
+  if (!v.is_array() || v.size() > max_size) throw InputError(key, "must be a list of counts");
   std::vector<std::uint64_t> out;
   for (const auto& e : v) {
     if (!e.is_number_unsigned()) throw InputError(key, "must be a list of whole numbers >= 0");
@@ -108,7 +109,7 @@ std::vector<std::uint64_t> counts_of(const nlohmann::json& j, const char* key) {
 
 }  // namespace
 
-PointResult result_from_json(const nlohmann::json& j) {
+PointResult detail::result_from_json(const nlohmann::json& j) {
   PointResult r;
   PackingSpec& s = r.point.packing;
   s.d = static_cast<int>(count_of(j, "d"));
@@ -137,9 +138,10 @@ PointResult result_from_json(const nlohmann::json& j) {
   c.cell_accesses = count_of(j, "cell_accesses");
   c.narrow_phase_checks = count_of(j, "narrow_phase_checks");
   c.contacts = count_of(j, "contacts");
-  c.particles_per_level = counts_of(j, "particles_per_level");
-  c.accesses_by_level = counts_of(j, "accesses_by_level");
-  c.checks_by_level = counts_of(j, "checks_by_level");
+  constexpr auto kLevels = static_cast<std::size_t>(kMaxLevels);
+  c.particles_per_level = counts_of(j, "particles_per_level", kLevels);
+  c.accesses_by_level = counts_of(j, "accesses_by_level", kLevels * kLevels);
+  c.checks_by_level = counts_of(j, "checks_by_level", kLevels * kLevels);
   r.T_over_N = finite_of(j, "T_over_N");
   r.T_cd_over_N = finite_of(j, "T_cd_over_N");
   r.T_ca_over_N = finite_of(j, "T_ca_over_N");
@@ -159,18 +161,18 @@ PointResult result_from_json(const nlohmann::json& j) {
   return r;
 }
 
-void check_result(const PointResult& r, double K) {
+void detail::check_result(const PointResult& r, double K) {
   const Counters& c = r.counts;
   const auto L = static_cast<std::size_t>(c.levels);
-  if (c.levels < 1 || r.sizes.size() != L || c.particles_per_level.size() != L || c.accesses_by_level.size() != L ||
-      c.checks_by_level.size() != L)
-    throw InputError("levels", "the per-level lists do not have one entry per level");
+  // Sizes and particles per level; accesses and checks per pair of levels
+  // (particle's level x level searched, Counters).
+  if (c.levels < 1 || r.sizes.size() != L || c.particles_per_level.size() != L ||
+      c.accesses_by_level.size() != L * L || c.checks_by_level.size() != L * L)
+    throw InputError("levels", "the per-level lists do not have one entry per level (L x L by level pairs)");
   std::uint64_t n = 0, acc = 0, chk = 0;
-  for (std::size_t h = 0; h < L; ++h) {
-    n += c.particles_per_level[h];
-    acc += c.accesses_by_level[h];
-    chk += c.checks_by_level[h];
-  }
+  for (std::uint64_t v : c.particles_per_level) n += v;
+  for (std::uint64_t v : c.accesses_by_level) acc += v;
+  for (std::uint64_t v : c.checks_by_level) chk += v;
   if (n != r.n || r.n != r.point.packing.n) throw InputError("particles_per_level", "does not add up to n");
   if (acc != c.cell_accesses) throw InputError("accesses_by_level", "does not add up to cell_accesses");
   if (chk != c.narrow_phase_checks) throw InputError("checks_by_level", "does not add up to narrow_phase_checks");
@@ -220,24 +222,32 @@ void write_csv(const std::string& path, const Scene& scene, const std::vector<nl
 
 }  // namespace
 
+std::string result_json_line(const PointResult& r) { return detail::result_to_json(r).dump(); }
+
+PointResult result_from_json_line(const std::string& line, double K) {
+  PointResult r = detail::result_from_json(nlohmann::json::parse(line));
+  detail::check_result(r, K);
+  return r;
+}
+
 void write_results(const std::string& stem, const Scene& scene, const std::vector<PointResult>& results) {
   std::vector<nlohmann::json> rows;
   std::size_t lmax = 0;
   for (const auto& r : results) {
-    rows.push_back(result_to_json(r));
+    rows.push_back(detail::result_to_json(r));
     lmax = std::max<std::size_t>(lmax, r.counts.levels);
   }
   const hsize_t P = rows.size(), L = lmax;
-  h5_write_file(stem + ".h5", [&](hid_t f) {
+  detail::h5_write_file(stem + ".h5", [&](hid_t f) {
     for (const char* c : kNumericColumns) {
       std::vector<double> v;
       for (const auto& j : rows) v.push_back(j.at(c).is_null() ? std::nan("") : j.at(c).get<double>());
-      h5_write_dataset(f, c, v, {P});
+      detail::h5_write_dataset(f, c, v, {P});
     }
     for (const char* c : kTextColumns) {
       std::vector<std::string> v;
       for (const auto& j : rows) v.push_back(j.at(c));
-      h5_write_strings(f, c, v);
+      detail::h5_write_strings(f, c, v);
     }
     // Per level (padded: NaN sizes, zero counts beyond a point's own L).
     std::vector<double> sizes(P * L, std::nan(""));
@@ -254,24 +264,24 @@ void write_results(const std::string& stem, const Scene& scene, const std::vecto
         }
       }
     }
-    h5_write_dataset(f, "sizes", sizes, {P, L});
-    h5_write_dataset(f, "particles_per_level", particles, {P, L});
-    h5_write_dataset(f, "accesses_by_level", acc, {P, L, L});
-    h5_write_dataset(f, "checks_by_level", chk, {P, L, L});
-    H5Handle root{H5Gopen2(f, "/", H5P_DEFAULT), H5Gclose};
-    h5_write_attr(root.id, "scene", scene.name);
-    h5_write_attr(root.id, "description", scene.description);
-    h5_write_attr(root.id, "scale", scene.scale);
-    h5_write_attr(root.id, "scene_toml", scene.source);
-    h5_write_attr(root.id, "cells", std::string(to_string(scene.grid.cells)));
-    h5_write_attr(root.id, "K", std::vector<double>{scene.grid.K});
-    h5_write_attr(root.id, "q", std::vector<double>{scene.grid.q});
-    h5_write_attr(root.id, "levels_requested", std::vector<double>{scene.grid.levels ? *scene.grid.levels : 0.0});
-    for (const auto& [k, v] : provenance_fields()) h5_write_attr(root.id, k, v);
-    h5_write_attr(root.id, "created_utc", utc_now());
-    h5_write_attr(root.id, "matrix_layout", std::string("[point][level of the particle][level searched]"));
+    detail::h5_write_dataset(f, "sizes", sizes, {P, L});
+    detail::h5_write_dataset(f, "particles_per_level", particles, {P, L});
+    detail::h5_write_dataset(f, "accesses_by_level", acc, {P, L, L});
+    detail::h5_write_dataset(f, "checks_by_level", chk, {P, L, L});
+    detail::H5Handle root{H5Gopen2(f, "/", H5P_DEFAULT), H5Gclose};
+    detail::h5_write_attr(root.id, "scene", scene.name);
+    detail::h5_write_attr(root.id, "description", scene.description);
+    detail::h5_write_attr(root.id, "scale", scene.scale);
+    detail::h5_write_attr(root.id, "scene_toml", scene.source);
+    detail::h5_write_attr(root.id, "cells", std::string(to_string(scene.grid.cells)));
+    detail::h5_write_attr(root.id, "K", std::vector<double>{scene.grid.K});
+    detail::h5_write_attr(root.id, "q", std::vector<double>{scene.grid.q});
+    detail::h5_write_attr(root.id, "levels_requested", std::vector<double>{scene.grid.levels ? *scene.grid.levels : 0.0});
+    for (const auto& [k, v] : provenance_fields()) detail::h5_write_attr(root.id, k, v);
+    detail::h5_write_attr(root.id, "created_utc", utc_now());
+    detail::h5_write_attr(root.id, "matrix_layout", std::string("[point][level of the particle][level searched]"));
   });
   write_csv(stem + ".csv", scene, rows);
 }
 
-}  // namespace hgrid::detail
+}  // namespace hgrid

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "experiment/result_files.hpp"
 #include "experiment/runner.hpp"
 
 namespace hgrid::detail {
@@ -13,14 +14,9 @@ nlohmann::json result_to_json(const PointResult& r);
 /// input: InputError naming the field for a wrong type, sign or range.
 PointResult result_from_json(const nlohmann::json& j);
 
-/// Checks a result's counts against each other: one entry per level in every
-/// list, the lists adding up to n, accesses and checks, and T/N equal to
+/// Checks a result's counts against each other: one entry per level (sizes,
+/// particles) or per pair of levels (accesses, checks), the lists adding up
+/// to n, accesses and checks, and T/N equal to
 /// (checks + K accesses) / n. Throws InputError naming the field.
 void check_result(const PointResult& r, double K);
-
-/// Writes <stem>.h5 (raw counts per point and level, model values, the
-/// parameters, seeds, scene text, git hash, compiler, timings) and <stem>.csv
-/// (one row per point, named columns for gnuplot); both atomically.
-void write_results(const std::string& stem, const Scene& scene, const std::vector<PointResult>& results);
-
 }  // namespace hgrid::detail
