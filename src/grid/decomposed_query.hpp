@@ -22,6 +22,10 @@ struct RankCounts {
   std::uint64_t reported = 0;
 };
 
+/// Pass as the callback to count the reported pairs without handing them out
+/// (no look-up of their global indices).
+struct CountOnly {};
+
 /// `grid` was built from `spheres`: the rank's own particles first (indices
 /// below n_owned), then its ghosts; ids[k] is the global index of spheres[k].
 /// Calls f(id_i, id_j), id_i < id_j, for every overlapping pair whose lower
@@ -30,6 +34,7 @@ struct RankCounts {
 template <Search S, class Count = Uncounted, int D, Boundary B, class F>
 RankCounts query_reported_pairs(const HGrid<D, B>& grid, std::span<const Sphere<D>> spheres,
                                 std::span<const std::uint64_t> ids, std::size_t n_owned, F&& f, int threads) {
+  (void)f;  // unused with CountOnly
   if (spheres.size() != grid.size() || ids.size() != spheres.size() || n_owned > spheres.size())
     throw InputError("ids", "one global index per particle of the grid, own particles first");
   const int T = resolve_threads(threads);
@@ -43,12 +48,14 @@ RankCounts query_reported_pairs(const HGrid<D, B>& grid, std::span<const Sphere<
           if ((i_first ? i : j) >= n_owned) return;  // the lower one's owner reports it
         }
         ++reported[static_cast<std::size_t>(t) * 8];
-        const std::uint64_t a = ids[i] < ids[j] ? ids[i] : ids[j];
-        const std::uint64_t b = ids[i] < ids[j] ? ids[j] : ids[i];
-        if constexpr (std::is_invocable_v<F&, int, std::uint64_t, std::uint64_t>)
-          f(t, a, b);
-        else
-          f(a, b);
+        if constexpr (!std::is_same_v<std::decay_t<F>, CountOnly>) {
+          const std::uint64_t a = ids[i] < ids[j] ? ids[i] : ids[j];
+          const std::uint64_t b = ids[i] < ids[j] ? ids[j] : ids[i];
+          if constexpr (std::is_invocable_v<F&, int, std::uint64_t, std::uint64_t>)
+            f(t, a, b);
+          else
+            f(a, b);
+        }
       },
       threads);
   for (int t = 0; t < T; ++t) out.reported += reported[static_cast<std::size_t>(t) * 8];

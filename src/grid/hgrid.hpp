@@ -15,11 +15,11 @@
 #include "grid/counters.hpp"
 #include "grid/detail/levels.hpp"
 #include "grid/detail/stencil.hpp"
-#include "grid/detail/uninit_allocator.hpp"
 #include "grid/error.hpp"
 #include "grid/geometry.hpp"
 #include "grid/params.hpp"
 #include "grid/threads.hpp"
+#include "grid/uninit_vector.hpp"
 
 namespace hgrid {
 

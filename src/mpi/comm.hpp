@@ -5,9 +5,12 @@
 #pragma once
 #include <cstdint>
 #include <exception>
+#include <span>
 #include <string>
 #include <type_traits>
 #include <vector>
+
+#include "grid/uninit_vector.hpp"
 
 namespace hgrid::mpi {
 
@@ -68,12 +71,12 @@ void exchange_items(const void* send, const std::vector<std::uint64_t>& send_cou
 /// rank 0, then counts[1] for rank 1, ... (counts has size() entries).
 /// Returns what every rank sent to this one, in rank order.
 template <class T>
-std::vector<T> all_to_all(const std::vector<T>& items, const std::vector<std::uint64_t>& counts) {
+UninitVector<T> all_to_all(std::span<const T> items, const std::vector<std::uint64_t>& counts) {
   static_assert(std::is_trivially_copyable_v<T>);
   const std::vector<std::uint64_t> recv_counts = detail::exchange_counts(counts);
   std::uint64_t total = 0;
   for (auto c : recv_counts) total += c;
-  std::vector<T> out(total);
+  UninitVector<T> out(total);
   detail::exchange_items(items.data(), counts, out.data(), recv_counts, sizeof(T));
   return out;
 }

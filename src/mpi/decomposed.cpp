@@ -17,25 +17,33 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-/// A particle on its way to another rank: sphere and global index.
-template <int D>
-struct Item {
-  Sphere<D> s;
-  std::uint64_t id;
+
+/// Where each item goes: item k to rank dest[k], grouped by rank (a
+/// counting sort; the order within a rank kept).
+class Route {
+ public:
+  Route(std::span<const int> dest, int ranks) : dest_(dest), counts_(static_cast<std::size_t>(ranks), 0) {
+    for (int r : dest) ++counts_[static_cast<std::size_t>(r)];
+  }
+  const std::vector<std::uint64_t>& counts() const { return counts_; }
+  /// item(k) for every k, grouped by destination.
+  template <class T, class ItemOf>
+  UninitVector<T> gather(ItemOf&& item) const {
+    std::vector<std::uint64_t> at(counts_.size(), 0);
+    for (std::size_t r = 1; r < counts_.size(); ++r) at[r] = at[r - 1] + counts_[r - 1];
+    UninitVector<T> out(dest_.size());
+    for (std::size_t k = 0; k < dest_.size(); ++k) out[at[static_cast<std::size_t>(dest_[k])]++] = item(k);
+    return out;
+  }
+
+ private:
+  std::span<const int> dest_;
+  std::vector<std::uint64_t> counts_;
 };
 
-/// Items grouped by destination rank (a counting sort): item(k) goes to
-/// rank dest[k]. Returns the items and how many go to each rank.
-template <class T, class ItemOf>
-std::pair<std::vector<T>, std::vector<std::uint64_t>> by_rank(const std::vector<int>& dest, int ranks,
-                                                              ItemOf&& item) {
-  std::vector<std::uint64_t> counts(static_cast<std::size_t>(ranks), 0);
-  for (int r : dest) ++counts[static_cast<std::size_t>(r)];
-  std::vector<std::uint64_t> at(counts.size(), 0);
-  for (std::size_t r = 1; r < counts.size(); ++r) at[r] = at[r - 1] + counts[r - 1];
-  std::vector<T> out(dest.size());
-  for (std::size_t k = 0; k < dest.size(); ++k) out[at[static_cast<std::size_t>(dest[k])]++] = item(k);
-  return {std::move(out), std::move(counts)};
+template <class T>
+UninitVector<T> send(const Route& route, const UninitVector<T>& items) {
+  return all_to_all(std::span<const T>(items), route.counts());
 }
 
 std::uint64_t peak_rss_bytes() {
@@ -107,46 +115,49 @@ DecomposedRun run(Packing part, std::uint64_t first, std::uint64_t total, double
   {
     std::vector<std::uint64_t> counts(static_cast<std::size_t>(P), 0);
     counts[0] = sample.size();
-    out.radii_sample = all_to_all(sample, counts);
+    const auto got = all_to_all(std::span<const double>(sample), counts);
+    out.radii_sample.assign(got.begin(), got.end());
   }
 
   // Every particle to the owner of its brick.
   auto t0 = Clock::now();
-  std::vector<Item<D>> own;
+  UninitVector<Sphere<D>> spheres;
+  UninitVector<std::uint64_t> ids;
   {
-    auto spheres = part.spheres<D>();
+    UninitVector<int> dest(part.size());
+    auto sphere = [&](std::size_t k) {
+      Sphere<D> s{{}, part.radii[k]};
+      for (int a = 0; a < D; ++a) s.x[a] = part.positions[k * D + a];
+      return s;
+    };
+    for (std::size_t k = 0; k < dest.size(); ++k) dest[k] = bricks.owner(sphere(k).x);
+    const Route route(dest, P);
+    spheres = send(route, route.gather<Sphere<D>>(sphere));
+    ids = send(route, route.gather<std::uint64_t>([&](std::size_t k) { return first + k; }));
     part = Packing{};
-    std::vector<int> dest(spheres.size());
-    for (std::size_t k = 0; k < spheres.size(); ++k) dest[k] = bricks.owner(spheres[k].x);
-    auto [items, counts] = by_rank<Item<D>>(dest, P, [&](std::size_t k) { return Item<D>{spheres[k], first + k}; });
-    spheres = {};
-    own = all_to_all(items, counts);
   }
+  const std::size_t n_owned = spheres.size();
   // The ghosts: each own particle to the ranks within 2 r of it.
-  std::vector<Sphere<D>> spheres(own.size());
-  std::vector<std::uint64_t> ids(own.size());
-  for (std::size_t k = 0; k < own.size(); ++k) spheres[k] = own[k].s, ids[k] = own[k].id;
-  own = {};
-  std::vector<Item<D>> ghosts;
   {
     std::vector<std::uint32_t> which;
     std::vector<int> dest;
-    rep.shell_ghosts = for_each_ghost(bricks, std::span<const Sphere<D>>(spheres), me, r_max, counted,
-                                      [&](std::size_t k, int to) {
-                                        which.push_back(static_cast<std::uint32_t>(k));
-                                        dest.push_back(to);
-                                      });
-    const auto [items, counts] = by_rank<Item<D>>(dest, P, [&](std::size_t k) {
-      return Item<D>{spheres[which[k]], ids[which[k]]};
+    for_each_ghost(bricks, std::span<const Sphere<D>>(spheres), me, r_max, false, [&](std::size_t k, int to) {
+      which.push_back(static_cast<std::uint32_t>(k));
+      dest.push_back(to);
     });
-    ghosts = all_to_all(items, counts);
+    const Route route(dest, P);
+    const auto ghost_spheres = send(route, route.gather<Sphere<D>>([&](std::size_t k) { return spheres[which[k]]; }));
+    const auto ghost_ids = send(route, route.gather<std::uint64_t>([&](std::size_t k) { return ids[which[k]]; }));
+    rep.ghosts = ghost_spheres.size();
+    spheres.insert(spheres.end(), ghost_spheres.begin(), ghost_spheres.end());
+    ids.insert(ids.end(), ghost_ids.begin(), ghost_ids.end());
   }
   rep.seconds_exchange = since(t0);
-  const std::size_t n_owned = spheres.size();
   rep.owned = n_owned;
-  rep.ghosts = ghosts.size();
-  for (const auto& it : ghosts) spheres.push_back(it.s), ids.push_back(it.id);
-  ghosts = {};
+  // What one 2 r_max shell would have sent (hgrid count; not timed).
+  if (counted)
+    rep.shell_ghosts = for_each_ghost(bricks, std::span<const Sphere<D>>(spheres.data(), n_owned), me, r_max, true,
+                                      [](std::size_t, int) {});
 
   // The search of this brick.
   t0 = Clock::now();
@@ -158,20 +169,19 @@ DecomposedRun run(Packing part, std::uint64_t first, std::uint64_t total, double
   rep.grid_bytes = grid.memory_bytes();
   std::vector<std::vector<std::pair<std::uint64_t, std::uint64_t>>> found(
       pairs_out ? static_cast<std::size_t>(resolve_threads(g.threads)) : 0);
-  auto collect = [&](int t, std::uint64_t i, std::uint64_t j) {
-    if (pairs_out) found[static_cast<std::size_t>(t)].emplace_back(i, j);
-  };
+  auto collect = [&](int t, std::uint64_t i, std::uint64_t j) { found[static_cast<std::size_t>(t)].emplace_back(i, j); };
   t0 = Clock::now();
   const auto sp = std::span<const Sphere<D>>(spheres);
   const auto id = std::span<const std::uint64_t>(ids);
-  RankCounts c;
   const bool top_down = g.search == Search::top_down;
-  if (counted)
-    c = top_down ? query_reported_pairs<Search::top_down, Counted>(grid, sp, id, n_owned, collect, g.threads)
-                 : query_reported_pairs<Search::bottom_up, Counted>(grid, sp, id, n_owned, collect, g.threads);
-  else
-    c = top_down ? query_reported_pairs<Search::top_down, Uncounted>(grid, sp, id, n_owned, collect, g.threads)
-                 : query_reported_pairs<Search::bottom_up, Uncounted>(grid, sp, id, n_owned, collect, g.threads);
+  auto query = [&](auto&& f) {
+    if (counted)
+      return top_down ? query_reported_pairs<Search::top_down, Counted>(grid, sp, id, n_owned, f, g.threads)
+                      : query_reported_pairs<Search::bottom_up, Counted>(grid, sp, id, n_owned, f, g.threads);
+    return top_down ? query_reported_pairs<Search::top_down, Uncounted>(grid, sp, id, n_owned, f, g.threads)
+                    : query_reported_pairs<Search::bottom_up, Uncounted>(grid, sp, id, n_owned, f, g.threads);
+  };
+  RankCounts c = pairs_out ? query(collect) : query(CountOnly{});
   rep.seconds_query = since(t0);
   out.sizes = grid.sizes();
 
@@ -196,7 +206,7 @@ DecomposedRun run(Packing part, std::uint64_t first, std::uint64_t total, double
     found = {};
     std::vector<std::uint64_t> counts(static_cast<std::size_t>(P), 0);
     counts[0] = mine.size();
-    const std::vector<IdPair> all = all_to_all(mine, counts);
+    const auto all = all_to_all(std::span<const IdPair>(mine), counts);
     pairs_out->clear();
     pairs_out->reserve(all.size());
     for (const auto& p : all) pairs_out->emplace_back(p.i, p.j);

@@ -1,13 +1,14 @@
-// An allocator for the HGrid's large arrays, whose construction writes every
-// element exactly once: resize() leaves trivial elements unwritten instead of
-// zeroing them first (a whole pass over tens of MB at N = 10^6).
+// A vector for large arrays whose every element is written once after
+// allocation (the HGrid's arrays, the buffers of the decomposed search):
+// resize() leaves trivial elements unwritten instead of zeroing them first
+// (a whole pass over tens of MB at N = 10^6).
 #pragma once
 #include <memory>
 #include <new>
 #include <utility>
 #include <vector>
 
-namespace hgrid::detail {
+namespace hgrid {
 
 template <class T>
 struct UninitAllocator : std::allocator<T> {
@@ -34,4 +35,9 @@ struct UninitAllocator : std::allocator<T> {
 template <class T>
 using UninitVector = std::vector<T, UninitAllocator<T>>;
 
-}  // namespace hgrid::detail
+namespace detail {
+using hgrid::UninitAllocator;
+using hgrid::UninitVector;
+}  // namespace detail
+
+}  // namespace hgrid
