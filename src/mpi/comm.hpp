@@ -69,14 +69,18 @@ void exchange_items(const void* send, const std::vector<std::uint64_t>& send_cou
 
 /// All-to-all of trivially copyable items: `items` holds counts[0] items for
 /// rank 0, then counts[1] for rank 1, ... (counts has size() entries).
-/// Returns what every rank sent to this one, in rank order.
+/// Returns what every rank sent to this one, in rank order, with room for
+/// `spare` more items (appended later without moving the others).
 template <class T>
-UninitVector<T> all_to_all(std::span<const T> items, const std::vector<std::uint64_t>& counts) {
+UninitVector<T> all_to_all(std::span<const T> items, const std::vector<std::uint64_t>& counts,
+                           std::size_t spare = 0) {
   static_assert(std::is_trivially_copyable_v<T>);
   const std::vector<std::uint64_t> recv_counts = detail::exchange_counts(counts);
   std::uint64_t total = 0;
   for (auto c : recv_counts) total += c;
-  UninitVector<T> out(total);
+  UninitVector<T> out;
+  out.reserve(total + spare);
+  out.resize(total);
   detail::exchange_items(items.data(), counts, out.data(), recv_counts, sizeof(T));
   return out;
 }

@@ -41,9 +41,10 @@ class Route {
   std::vector<std::uint64_t> counts_;
 };
 
+/// The routed items, with room for `spare` more (the ghosts to come).
 template <class T>
-UninitVector<T> send(const Route& route, const UninitVector<T>& items) {
-  return all_to_all(std::span<const T>(items), route.counts());
+UninitVector<T> send(const Route& route, const UninitVector<T>& items, std::size_t spare = 0) {
+  return all_to_all(std::span<const T>(items), route.counts(), spare);
 }
 
 std::uint64_t peak_rss_bytes() {
@@ -119,7 +120,9 @@ DecomposedRun run(Packing part, std::uint64_t first, std::uint64_t total, double
     out.radii_sample.assign(got.begin(), got.end());
   }
 
-  // Every particle to the owner of its brick.
+  // Every particle to the owner of its brick (timed from when every rank
+  // has read its part: a slow read is not counted as exchange).
+  barrier();
   auto t0 = Clock::now();
   UninitVector<Sphere<D>> spheres;
   UninitVector<std::uint64_t> ids;
@@ -132,8 +135,11 @@ DecomposedRun run(Packing part, std::uint64_t first, std::uint64_t total, double
     };
     for (std::size_t k = 0; k < dest.size(); ++k) dest[k] = bricks.owner(sphere(k).x);
     const Route route(dest, P);
-    spheres = send(route, route.gather<Sphere<D>>(sphere));
-    ids = send(route, route.gather<std::uint64_t>([&](std::size_t k) { return first + k; }));
+    // Room for ghosts: an eighth of the own particles covers bricks much
+    // wider than the largest particle (a fuller layer moves the array once).
+    const std::size_t spare = part.size() / 8 + 1024;
+    spheres = send(route, route.gather<Sphere<D>>(sphere), spare);
+    ids = send(route, route.gather<std::uint64_t>([&](std::size_t k) { return first + k; }), spare);
     part = Packing{};
   }
   const std::size_t n_owned = spheres.size();
