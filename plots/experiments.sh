@@ -37,3 +37,4 @@ bash plots/model_errors.sh "$scale"
 bash plots/excess_by_level.sh "$scale"
 bash plots/slice_by_level.sh "$scale"
 bash plots/balance.sh "$scale"
+bash plots/ghosts.sh "$scale"   # the decomposed search's ghosts (skipped without MPI)

@@ -54,6 +54,10 @@ if [ "$(grep -vc '^#' "$tmp")" -le 1 ] || ! awk -F, '!/^#/ && NR > 5 && $2 == 1 
 fi
 mv "$tmp" "$csv"
 for fmt in png pdf; do
-  gnuplot -e "in='$csv'; out='paper_figs/ghosts$suffix.$fmt'; fmt='$fmt'; n='$n'" plots/ghosts.gp
+  out="paper_figs/ghosts$suffix.$fmt" t="paper_figs/.ghosts$suffix.tmp.$fmt"
+  gnuplot -e "in='$csv'; out='$t'; fmt='$fmt'; n='$n'" plots/ghosts.gp
+  if [ "$fmt" = pdf ]; then plots/lib/pdf_fixdate.sh "$t"; fi
+  mv -f "$t" "$out"
 done
 echo "plots/ghosts.sh: wrote $csv and paper_figs/ghosts$suffix.png|pdf" >&2
+awk -F, '/^#/ || !h++ {next} $1 == 100 {printf "ghosts: omega = 100 on %d ranks: %.1f x fewer than a 2 r_max shell\n", $2, $7}' "$csv" >&2
