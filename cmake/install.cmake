@@ -3,7 +3,8 @@
 # hgridlab::hgridlab.
 include(CMakePackageConfigHelpers)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/hgridlab
-        FILES_MATCHING PATTERN "*.hpp" PATTERN "cli" EXCLUDE)
+        FILES_MATCHING PATTERN "*.hpp" PATTERN "cli" EXCLUDE
+        PATTERN "mpi" EXCLUDE)  # the tool's MPI layer: not installed (its library is not)
 install(FILES ${HGRID_GENERATED}/grid/version.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/hgridlab/grid)
 install(TARGETS hgridlab_core hgridlab EXPORT hgridlabTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
