@@ -10,6 +10,8 @@
 #include "experiment/result_files.hpp"
 #include "experiment/runner.hpp"
 #include "grid/error.hpp"
+#include "cli_support.hpp"
+#include "mpi/comm.hpp"
 #include "mpi/sweep.hpp"
 
 namespace hgrid {
@@ -123,3 +125,20 @@ TEST_F(Journal, OneRankSweepIsTheSerialRun) {
 
 }  // namespace
 }  // namespace hgrid
+
+namespace hgrid::test {
+namespace {
+
+// A build without MPI started by mpirun as several ranks refuses to run P
+// copies of the same work (the MPI build is covered by tests/mpi/*.sh; it
+// would try to reach a launcher that is not there).
+TEST(MpiLaunch, BuildWithoutMpiRefusesSeveralRanks) {
+  if (mpi::built_with_mpi()) GTEST_SKIP() << "this build has MPI";
+  const Result r = hgrid_run("--version", "OMPI_COMM_WORLD_SIZE=2 OMPI_COMM_WORLD_RANK=0");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("built without MPI"), std::string::npos) << r.err;
+  EXPECT_EQ(hgrid_run("--version", "OMPI_COMM_WORLD_SIZE=1").status, 0);
+}
+
+}  // namespace
+}  // namespace hgrid::test

@@ -6,6 +6,7 @@
 #include <exception>
 #include <iostream>
 #include <sstream>
+#include <string>
 
 #include "cli/common.hpp"
 #include "grid/error.hpp"
@@ -82,6 +83,14 @@ int parse_and_run(CLI::App& app, int argc, char** argv) {
 int main(int argc, char** argv) {
   // MPI only when mpirun or srun started this process (mpi/comm.hpp).
   const hgrid::mpi::Session mpi_session(argc, argv);
+  if (!hgrid::mpi::built_with_mpi() && hgrid::mpi::launched_ranks() > 1) {
+    // P copies of a plain run would each do all the work into the same files.
+    const char* r = std::getenv("OMPI_COMM_WORLD_RANK");
+    if (!r || std::string(r) == "0")
+      std::cerr << "hgrid: error: mpi: this hgrid was built without MPI (install libopenmpi-dev and rebuild); "
+                   "run it without mpirun/srun\n";
+    return hgrid::cli::kBadInput;
+  }
   CLI::App app{"hgrid: hierarchical-grid contact detection, counted, and its cost model\n"
                "(Krijgsman, Ogarko & Luding, Comp. Part. Mech. 1 (2014) 357-372)"};
   app.set_version_flag("--version", std::string("hgrid ") + hgrid::version() + " (" + hgrid::git_hash() + ", " +

@@ -1,8 +1,22 @@
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
 #include "grid/error.hpp"
 #include "mpi/comm.hpp"
+
+namespace hgrid::mpi {
+
+int launched_ranks() {
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
+    if (const char* n = std::getenv(v)) {
+      const int k = std::atoi(n);
+      if (k > 1) return k;
+    }
+  return 1;
+}
+
+}  // namespace hgrid::mpi
 
 namespace hgrid::mpi::detail {
 

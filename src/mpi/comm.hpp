@@ -21,6 +21,11 @@ bool built_with_mpi();
 /// MPI or MPICH, Slurm's srun): the environment variables they set.
 bool launched_by_mpi();
 
+/// The number of processes a launcher says it started (OMPI_COMM_WORLD_SIZE,
+/// PMI_SIZE; 1 when neither is set), whether or not this build has MPI: a
+/// build without MPI started as several ranks would run as several copies.
+int launched_ranks();
+
 /// MPI for the lifetime of this object: initialised (funneled threads) only
 /// when launched_by_mpi(), so that a plain run never starts MPI; finalised
 /// by the destructor. One per process, in main().
