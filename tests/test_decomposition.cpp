@@ -35,13 +35,14 @@ Simulated simulate(const Scene<D>& s, const std::vector<double>& sizes, int P, i
   for (int r = 0; r < P; ++r) out.owned.push_back(ids[r].size());
   std::vector<std::vector<Sphere<D>>> ghost_sph(P);
   std::vector<std::vector<std::uint64_t>> ghost_ids(P);
-  for (int r = 0; r < P; ++r)
-    out.shell_ghosts += for_each_ghost(bricks, std::span<const Sphere<D>>(sph[r]), r, r_max, true,
-                                       [&](std::size_t k, int to) {
-                                         ghost_sph[to].push_back(sph[r][k]);
-                                         ghost_ids[to].push_back(ids[r][k]);
-                                         ++out.ghosts;
-                                       });
+  for (int r = 0; r < P; ++r) {
+    out.shell_ghosts += shell_ghost_count(bricks, std::span<const Sphere<D>>(sph[r]), r, r_max);
+    for_each_ghost(bricks, std::span<const Sphere<D>>(sph[r]), r, [&](std::size_t k, int to) {
+      ghost_sph[to].push_back(sph[r][k]);
+      ghost_ids[to].push_back(ids[r][k]);
+      ++out.ghosts;
+    });
+  }
   for (int r = 0; r < P; ++r) {
     const std::size_t n_owned = sph[r].size();
     sph[r].insert(sph[r].end(), ghost_sph[r].begin(), ghost_sph[r].end());

@@ -24,11 +24,8 @@ void run_decomposed_pairs(const std::string& file, const GridParams& g) {
   std::vector<std::pair<std::uint64_t, std::uint64_t>> pairs;
   mpi::decomposed_search(file, g, false, &pairs);
   if (mpi::rank() != 0) return;
-  std::string line;
-  for (const auto& [i, j] : pairs) {
-    line = std::to_string(i) + ' ' + std::to_string(j) + '\n';
-    std::fwrite(line.data(), 1, line.size(), stdout);
-  }
+  PairWriter out;
+  for (const auto& [i, j] : pairs) out(i, j);
 }
 
 void run_decomposed_count(const std::string& file, const GridParams& g, double K, bool as_json) {
@@ -54,7 +51,7 @@ void run_decomposed_count(const std::string& file, const GridParams& g, double K
   // The work of every rank, ghosts' searches included: what decomposing costs.
   j["cell_accesses"] = r.work.cell_accesses;
   j["narrow_phase_checks"] = r.work.narrow_phase_checks;
-  j["contacts"] = r.pairs;
+  j["contacts"] = r.work.contacts;
   j["T_over_N"] = n > 0 ? r.work.cost(K) / n : 0.0;
   j["T_cd_over_N"] = n > 0 ? static_cast<double>(r.work.narrow_phase_checks) / n : 0.0;
   j["T_ca_over_N"] = n > 0 ? static_cast<double>(r.work.cell_accesses) / n : 0.0;
@@ -107,7 +104,7 @@ void run_decomposed_count(const std::string& file, const GridParams& g, double K
   std::printf("total: %llu cell accesses, %llu narrow-phase checks (all ranks, ghosts included), %llu contacts, "
               "T/N = %.6g (model, serial grid: %.6g)\n",
               (unsigned long long)r.work.cell_accesses, (unsigned long long)r.work.narrow_phase_checks,
-              (unsigned long long)r.pairs, j["T_over_N"].get<double>(), m.T_over_N);
+              (unsigned long long)r.work.contacts, j["T_over_N"].get<double>(), m.T_over_N);
   std::printf("ghosts: %llu level-aware, %llu with a 2 r_max shell (%.3g x); peak memory %.4g bytes per particle\n",
               (unsigned long long)r.ghosts, (unsigned long long)r.shell_ghosts, j["shell_over_level_aware"].get<double>(),
               j["peak_rss_bytes_per_particle"].get<double>());

@@ -1,5 +1,4 @@
 // hgrid pairs / hgrid count: the HGrid on a packing file.
-#include <charconv>
 #include <cmath>
 #include <chrono>
 #include <cstdio>
@@ -29,29 +28,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-/// Buffered "i j\n" writer for large pair lists.
-class PairWriter {
- public:
-  void operator()(std::uint32_t i, std::uint32_t j) {
-    if (buf_.size() - used_ < 32) flush();
-    char* p = buf_.data() + used_;
-    p = std::to_chars(p, buf_.data() + buf_.size(), i).ptr;
-    *p++ = ' ';
-    p = std::to_chars(p, buf_.data() + buf_.size(), j).ptr;
-    *p++ = '\n';
-    used_ = static_cast<std::size_t>(p - buf_.data());
-  }
-  void flush() {
-    std::fwrite(buf_.data(), 1, used_, stdout);
-    used_ = 0;
-  }
-  ~PairWriter() { flush(); }
-
- private:
-  std::string buf_ = std::string(1 << 16, '\0');
-  std::size_t used_ = 0;
-};
 
 struct GridOptions {
   std::string file;

@@ -2,6 +2,9 @@
 #pragma once
 #include <CLI/CLI.hpp>
 
+#include <charconv>
+#include <cstdint>
+#include <cstdio>
 #include <optional>
 #include <string>
 
@@ -10,6 +13,30 @@
 #include "io/particle_file.hpp"
 
 namespace hgrid::cli {
+
+/// Buffered "i j\n" writer to stdout for large pair lists (pairs, serial
+/// and decomposed).
+class PairWriter {
+ public:
+  void operator()(std::uint64_t i, std::uint64_t j) {
+    if (buf_.size() - used_ < 48) flush();  // two 20-digit numbers and 2 bytes
+    char* p = buf_.data() + used_;
+    p = std::to_chars(p, buf_.data() + buf_.size(), i).ptr;
+    *p++ = ' ';
+    p = std::to_chars(p, buf_.data() + buf_.size(), j).ptr;
+    *p++ = '\n';
+    used_ = static_cast<std::size_t>(p - buf_.data());
+  }
+  void flush() {
+    std::fwrite(buf_.data(), 1, used_, stdout);
+    used_ = 0;
+  }
+  ~PairWriter() { flush(); }
+
+ private:
+  std::string buf_ = std::string(1 << 16, '\0');
+  std::size_t used_ = 0;
+};
 
 /// Each subcommand file provides one of these; main.cpp calls them all.
 void register_grid_commands(CLI::App& app);   // pairs, count      (cmd_grid.cpp)

@@ -62,22 +62,32 @@ RankCounts query_reported_pairs(const HGrid<D, B>& grid, std::span<const Sphere<
   return out;
 }
 
-/// The ghosts a rank sends: for every own particle, the other ranks whose
-/// bricks come within ghost_reach(r) of its centre. f(k, rank) for the k-th
-/// of `own`. Returns how many copies a single shell of ghost_reach(r_max)
-/// for every particle would send instead (0 when count_shell is false).
-template <int D, class F>
-std::uint64_t for_each_ghost(const Bricks<D>& bricks, std::span<const Sphere<D>> own, int self, double r_max,
-                             bool count_shell, F&& f) {
+/// The longest side of the bricks' box (the scale of ghost_reach's margin).
+template <int D>
+double longest_side(const Bricks<D>& bricks) {
   double longest = 0;
   for (double side : bricks.box()) longest = std::max(longest, side);
-  const double shell = ghost_reach(r_max, longest);
-  std::uint64_t shell_copies = 0;
-  for (std::size_t k = 0; k < own.size(); ++k) {
+  return longest;
+}
+
+/// The ghosts a rank sends: for every own particle, the other ranks whose
+/// bricks come within ghost_reach(r) of its centre; f(k, rank) for the k-th
+/// of `own`.
+template <int D, class F>
+void for_each_ghost(const Bricks<D>& bricks, std::span<const Sphere<D>> own, int self, F&& f) {
+  const double longest = longest_side(bricks);
+  for (std::size_t k = 0; k < own.size(); ++k)
     bricks.for_each_within(own[k].x, ghost_reach(own[k].r, longest), self, [&](int rank) { f(k, rank); });
-    if (count_shell) bricks.for_each_within(own[k].x, shell, self, [&](int) { ++shell_copies; });
-  }
-  return shell_copies;
+}
+
+/// How many copies one shell of ghost_reach(r_max) for every particle would
+/// send instead (what the level-aware layer is compared with).
+template <int D>
+std::uint64_t shell_ghost_count(const Bricks<D>& bricks, std::span<const Sphere<D>> own, int self, double r_max) {
+  const double shell = ghost_reach(r_max, longest_side(bricks));
+  std::uint64_t copies = 0;
+  for (const auto& s : own) bricks.for_each_within(s.x, shell, self, [&](int) { ++copies; });
+  return copies;
 }
 
 }  // namespace hgrid

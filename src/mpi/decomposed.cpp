@@ -92,8 +92,7 @@ DecomposedRun run(Packing part, std::uint64_t first, std::uint64_t total, double
 
   // What the ranks' parts hold: the largest radius, the particles' volume,
   // the halo volumes, and a sample of radii for the model on rank 0.
-  double longest = 0;
-  for (double side : box) longest = std::max(longest, side);
+  const double longest = longest_side(bricks);
   double r_max = 0;
   std::vector<double> sums(2, 0.0);  // particle volume, sum of halo volumes
   const std::uint64_t stride = std::max<std::uint64_t>(1, (total + kRadiiSample - 1) / kRadiiSample);
@@ -147,7 +146,7 @@ DecomposedRun run(Packing part, std::uint64_t first, std::uint64_t total, double
   {
     std::vector<std::uint32_t> which;
     std::vector<int> dest;
-    for_each_ghost(bricks, std::span<const Sphere<D>>(spheres), me, r_max, false, [&](std::size_t k, int to) {
+    for_each_ghost(bricks, std::span<const Sphere<D>>(spheres), me, [&](std::size_t k, int to) {
       which.push_back(static_cast<std::uint32_t>(k));
       dest.push_back(to);
     });
@@ -162,8 +161,7 @@ DecomposedRun run(Packing part, std::uint64_t first, std::uint64_t total, double
   rep.owned = n_owned;
   // What one 2 r_max shell would have sent (hgrid count; not timed).
   if (counted)
-    rep.shell_ghosts = for_each_ghost(bricks, std::span<const Sphere<D>>(spheres.data(), n_owned), me, r_max, true,
-                                      [](std::size_t, int) {});
+    rep.shell_ghosts = shell_ghost_count(bricks, std::span<const Sphere<D>>(spheres.data(), n_owned), me, r_max);
 
   // The search of this brick.
   t0 = Clock::now();
@@ -199,7 +197,6 @@ DecomposedRun run(Packing part, std::uint64_t first, std::uint64_t total, double
   sum(flat);
   out.work = c.work;
   unflatten(flat, out.work);
-  out.pairs = out.work.contacts;
   out.ghosts = flat[flat.size() - 2];
   out.shell_ghosts = flat.back();
   if (pairs_out) {

@@ -37,8 +37,9 @@ struct DecomposedRun {
   double r_max = 0;
   std::vector<int> bricks;          // bricks per axis
   std::vector<double> sizes;        // cell sizes the grids used
-  Counters work;                    // summed over the ranks, ghosts' searches included
-  std::uint64_t pairs = 0;          // overlapping pairs, each reported once
+  /// Summed over the ranks, ghosts' searches included; contacts = the
+  /// overlapping pairs, each reported once.
+  Counters work;
   std::uint64_t ghosts = 0, shell_ghosts = 0;
   /// Volume of a brick's halo: the level-aware layer's (grown by 2 r for a
   /// particle of radius r, averaged over the particles) and the 2 r_max shell's.
