@@ -9,6 +9,7 @@
 
 #include "grid/geometry.hpp"
 #include "model/cell_sizes.hpp"
+#include "model/detail/coordinate_search.hpp"
 
 namespace hgrid {
 
@@ -190,23 +191,7 @@ TimeOptimalSizes time_optimal_sizes(const Distribution& dist, const ModelParams&
   for (int L = 1; L <= L_star + kExtraLevels; ++L) {
     std::vector<double> s = L == 1 ? std::vector<double>{top} : cell_sizes(dist, p, CellMethod::optimal, L);
     double here = seconds(s);
-    for (const double step : kSteps) {
-      for (bool improved = true; improved;) {
-        improved = false;
-        for (int h = 0; h + 1 < L; ++h)
-          for (const double f : {1.0 / step, step}) {
-            std::vector<double> trial = s;
-            trial[h] *= f;
-            if (trial[h] < bottom || (h > 0 && !(trial[h] > trial[h - 1])) || !(trial[h] < trial[h + 1])) continue;
-            const double v = seconds(trial);
-            if (v < here) {
-              s = trial;
-              here = v;
-              improved = true;
-            }
-          }
-      }
-    }
+    detail::coordinate_search(s, here, bottom, kSteps, seconds);
     if (here < best_seconds) {
       best_seconds = here;
       best.sizes = sizes_for_grid(s, top);
