@@ -58,7 +58,9 @@ def test_recommend_matches_the_command(tmp_path):
     assert all(a < b for a, b in zip(r["sizes"], r["sizes"][1:]))
     assert r["sizes"][-1] == 2 * radii.max()
     assert r["speedup"] == pytest.approx(r["linked_cell_T_over_N"] / r["T_over_N"], rel=1e-15)
-    assert r["lammps"][1].startswith("neigh_modify collection/interval %d " % r["levels"])
+    c = r["lammps_collections"]
+    assert all(a < b for a, b in zip(c, c[1:])) and c[-1] == 2 * radii.max()
+    assert r["lammps"][1].startswith("neigh_modify collection/interval %d " % len(c))
     path = tmp_path / "r.txt"
     path.write_text("".join("%r\n" % v for v in radii.tolist()))
     out = subprocess.run([os.environ["HGRID_BINARY"], "recommend", str(path), "--nu", "0.6", "--d", "3", "--json"],

@@ -52,8 +52,8 @@ void run_export(ExportOptions o) {
   // Everything is computed and checked before the first file is written.
   LammpsScript s;
   s.builds = o.builds;
-  if (o.collections == "model") {
-    s.collections = rounded_up_sizes(recommended_sizes(p, o.K));
+  if (o.collections == "model") {  // as `hgrid recommend` gives them: LAMMPS's own cost model
+    s.collections = rounded_up_sizes(lammps_collections_for(p.radii, p.d, p.packing_fraction()));
   } else if (!o.collections.empty()) {
     s.collections = parse_list(o.collections, "collections");
   } else {
@@ -90,7 +90,7 @@ void register_export_commands(CLI::App& app) {
   sub->add_option("--K", o->K, std::string(kKHelp) + " (for recommended sizes; default as `hgrid recommend`)");
   sub->add_option("--collections", o->collections,
                   "multi: size-class upper bounds as diameters c1,...,ck (last >= largest diameter), or 'model': "
-                  "the sizes of `hgrid recommend`");
+                  "the LAMMPS collections of `hgrid recommend` (LAMMPS's own cost model)");
   sub->add_option("--classes", o->classes, "multi, without --collections: k geometric classes")->default_val(4);
   sub->add_option("--smallest", o->smallest, "multi, without --collections: smallest class bound (default 2 r_min)");
   sub->add_option("--builds", o->builds, "timed neighbour-list builds per run")->default_val(10);

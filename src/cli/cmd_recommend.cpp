@@ -36,7 +36,9 @@ constexpr const char* kJsonKeys =
     "T_ca_over_N (cell accesses), linked_cell_size (2 r_max), linked_cell_T_over_N, speedup "
     "(linked_cell_T_over_N / T_over_N), cost (count|time: what the sizes minimise), predicted_seconds_build, "
     "predicted_seconds_query, linked_cell_predicted_seconds (build + query), speedup_seconds (the last four: "
-    "this machine's time model, null with cost count), lammps (input lines), mercurydpm (code lines). "
+    "this machine's time model, null with cost count), lammps_collections (LAMMPS multi collection bounds, exact: "
+    "from LAMMPS's own cost model, not the HGrid sizes), lammps_model (default, or the fit.json "
+    "$HGRID_LAMMPS_MODEL names), lammps (input lines), mercurydpm (code lines). "
     "T = tests + K accesses.";
 
 std::string k_text(const KChoice& k) {
@@ -75,8 +77,10 @@ void print_text(const RecommendOptions& o, const ParticleSet& s, const FileInput
   else
     std::printf("sizes minimise T (no time model used: `hgrid calibrate` measures one, or give --cost time)\n");
   std::printf("\n");
-  std::printf("LAMMPS (atom_style sphere, granular pair style; sizes rounded up to %d digits):\n", kPasteDigits);
-  for (const auto& line : lammps_settings(r.sizes, o.skin)) std::printf("  %s\n", line.c_str());
+  std::printf("LAMMPS (atom_style sphere, granular pair style; %zu collections from LAMMPS's own cost model, %s "
+              "coefficients; bounds rounded up to %d digits):\n",
+              r.lammps_collections.size(), r.lammps_model_source.c_str(), kPasteDigits);
+  for (const auto& line : lammps_settings(r.lammps_collections, o.skin)) std::printf("  %s\n", line.c_str());
   std::printf("\nMercuryDPM:\n");
   for (const auto& line : mercurydpm_settings(r.sizes, search)) std::printf("  %s\n", line.c_str());
 }

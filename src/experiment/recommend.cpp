@@ -4,7 +4,9 @@
 #include <cmath>
 
 #include "experiment/calibration.hpp"
+#include "experiment/lammps_fit.hpp"
 #include "grid/error.hpp"
+#include "grid/geometry.hpp"
 #include "model/cell_sizes.hpp"
 #include "model/distribution.hpp"
 
@@ -36,7 +38,20 @@ Recommendation recommend_cell_sizes(const std::vector<double>& radii, const Mode
   out.model.sizes = out.sizes;
   out.linked_cell_size = 2 * out.r_max;
   out.linked_cell.sizes = {out.linked_cell_size};
+  out.lammps_collections = lammps_collections_for(radii, p.d, p.nu, &out.lammps_model_source);
   return out;
+}
+
+std::vector<double> lammps_collections_for(const std::vector<double>& radii, int d, double nu, std::string* source) {
+  std::vector<double> diameters(radii.size());
+  double volume = 0;
+  for (std::size_t k = 0; k < radii.size(); ++k) {
+    diameters[k] = 2 * radii[k];
+    volume += ball_volume(d, radii[k]);
+  }
+  std::sort(diameters.begin(), diameters.end());
+  const std::vector<double> box(static_cast<std::size_t>(d), std::pow(volume / nu, 1.0 / d));
+  return lammps_collections(diameters, box, lammps_coefficients(source)).bounds;
 }
 
 std::optional<TimeModelUse> choose_time_model(const std::string& cost, const KChoice& k, int d, double n) {

@@ -32,6 +32,11 @@ struct Recommendation {
   /// build + query, and these are its predictions for them and the linked cell.
   std::optional<PredictedSeconds> seconds, linked_cell_seconds;
   double speedup_seconds() const { return seconds ? linked_cell_seconds->total() / seconds->total() : 0; }
+  /// LAMMPS `neighbor multi` collection bounds (diameters, radii's unit)
+  /// from its own cost model (model/lammps_multi.hpp), for a cubic periodic
+  /// box of the particles at nu; where its coefficients came from.
+  std::vector<double> lammps_collections;
+  std::string lammps_model_source;
 };
 
 /// The optimal sizes (best number of levels L*, or with `time` the
@@ -41,6 +46,11 @@ struct Recommendation {
 /// another unit give the same sizes in that unit. Throws InputError.
 Recommendation recommend_cell_sizes(const std::vector<double>& radii, const ModelParams& p,
                                     const std::optional<TimeModelUse>& time = std::nullopt);
+
+/// LAMMPS collection bounds for `radii` at packing fraction nu in d
+/// dimensions (a cubic periodic box), with lammps_coefficients(source).
+std::vector<double> lammps_collections_for(const std::vector<double>& radii, int d, double nu,
+                                           std::string* source = nullptr);
 
 /// The time model a recommendation uses for `cost` ("count": none; "time":
 /// the stored calibration's for dimension d, an InputError naming `cost` if

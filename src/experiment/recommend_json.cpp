@@ -32,7 +32,9 @@ std::string recommendation_json(const Recommendation& r, const KChoice& k, Searc
   j["predicted_seconds_query"] = r.seconds ? nlohmann::json(r.seconds->query) : nlohmann::json();
   j["linked_cell_predicted_seconds"] = r.seconds ? nlohmann::json(r.linked_cell_seconds->total()) : nlohmann::json();
   j["speedup_seconds"] = r.seconds ? nlohmann::json(r.speedup_seconds()) : nlohmann::json();
-  j["lammps"] = lammps_settings(r.sizes, skin);
+  j["lammps_collections"] = r.lammps_collections;
+  j["lammps_model"] = r.lammps_model_source;
+  j["lammps"] = lammps_settings(r.lammps_collections, skin);
   j["mercurydpm"] = mercurydpm_settings(r.sizes, search);
   return j.dump();
 }
