@@ -1,5 +1,6 @@
 // Packing files: HDF5 (read and write); the text formats through io/particle_file.
 
+#include <sys/time.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -180,12 +181,12 @@ Packing decode(const std::string& in) {
   return p;
 }
 
-Packing read_h5_in_child(const std::string& path) {
+Packing read_h5_in_child(const std::string& path, double base_seconds) {
   int fd[2];
   if (::pipe(fd) != 0) throw std::runtime_error("pipe failed");
   std::error_code ec;
   const double bytes = static_cast<double>(std::filesystem::file_size(path, ec));
-  const unsigned limit = static_cast<unsigned>(kIsolatedReadBaseSeconds + (ec ? 0.0 : bytes / 1e8));
+  const double limit = base_seconds + (ec ? 0.0 : bytes / 1e8);
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error("fork failed");
   if (pid == 0) {  // the child: read, send, and leave without running atexit handlers
@@ -193,7 +194,10 @@ Packing read_h5_in_child(const std::string& path) {
     // The default actions, not the caller's handlers (a fuzzer or a sanitizer
     // has some): a crash or the alarm ends the child, and the parent sees it.
     for (int sig : {SIGALRM, SIGSEGV, SIGBUS, SIGABRT, SIGFPE, SIGILL}) std::signal(sig, SIG_DFL);
-    ::alarm(limit);
+    itimerval timer{};
+    timer.it_value.tv_sec = static_cast<time_t>(limit);
+    timer.it_value.tv_usec = static_cast<suseconds_t>((limit - std::floor(limit)) * 1e6);
+    ::setitimer(ITIMER_REAL, &timer, nullptr);
     std::string msg;
     try {
       msg = encode(read_h5(path));
@@ -228,7 +232,7 @@ Packing read_h5_in_child(const std::string& path) {
   }
   if (WIFSIGNALED(status))
     throw InputError("file", "'" + path + "' is corrupt: the HDF5 library " +
-                                 (WTERMSIG(status) == SIGALRM ? "did not finish reading it in " + std::to_string(limit) + " s"
+                                 (WTERMSIG(status) == SIGALRM ? "did not finish reading it in " + format_number(limit) + " s"
                                                               : "crashed reading it (signal " +
                                                                     std::to_string(WTERMSIG(status)) + ")"));
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || msg.empty())
@@ -254,8 +258,8 @@ Packing parse_packing_csv(std::istream& in, const std::string& name) {
   return to_packing(parse_particles(text.str(), name), name);
 }
 
-Packing read_hdf5_packing(const std::string& path, Isolation isolation) {
-  return isolation == Isolation::child_process ? read_h5_in_child(path) : read_h5(path);
+Packing read_hdf5_packing(const std::string& path, Isolation isolation, double base_seconds) {
+  return isolation == Isolation::child_process ? read_h5_in_child(path, base_seconds) : read_h5(path);
 }
 
 Packing read_packing_part(const std::string& path, std::uint64_t part, std::uint64_t parts, std::uint64_t& first,
@@ -276,10 +280,10 @@ Packing read_packing_part(const std::string& path, std::uint64_t part, std::uint
   return p;
 }
 
-Packing read_packing(const std::string& path, Isolation isolation) {
+Packing read_packing(const std::string& path, Isolation isolation, double base_seconds) {
   if (!hdf5_file(path)) return to_packing(read_particles(path, isolation), path);
   if (!std::filesystem::exists(path)) throw InputError("file", "'" + path + "' does not exist");
-  Packing p = read_hdf5_packing(path, isolation);  // with the file's attributes
+  Packing p = read_hdf5_packing(path, isolation, base_seconds);  // with the file's attributes
   validate(p);
   return p;
 }

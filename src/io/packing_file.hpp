@@ -15,14 +15,17 @@ namespace hgrid {
 /// from a single-threaded caller only.
 enum class Isolation { none, child_process };
 
-/// Seconds a child may take to read an HDF5 file: this plus one per 100 MB.
+/// Seconds a child may take to read an HDF5 file: this plus one per 100 MB
+/// (`base_seconds` below; the fuzz target gives a shorter one, so that a
+/// file libhdf5 loops on costs it a fraction of a second, not five).
 inline constexpr double kIsolatedReadBaseSeconds = 5;
 
 /// Reads a packing from any particle file that has centres and a box (HDF5,
 /// CSV or text with `# box`, LAMMPS data and dump files; io/particle_file.hpp),
 /// validates it (see validate()) and returns it. Throws InputError naming the
 /// field that is wrong.
-Packing read_packing(const std::string& path, Isolation isolation = Isolation::none);
+Packing read_packing(const std::string& path, Isolation isolation = Isolation::none,
+                     double base_seconds = kIsolatedReadBaseSeconds);
 
 /// Part `part` of `parts` (0-based) of a packing file: its rows [first,
 /// first + count) with first = N part / parts, validated like read_packing
@@ -38,7 +41,8 @@ Packing read_packing_part(const std::string& path, std::uint64_t part, std::uint
 Packing parse_packing_csv(std::istream& in, const std::string& name);
 
 /// An HDF5 packing file as stored (not validated).
-Packing read_hdf5_packing(const std::string& path, Isolation isolation);
+Packing read_hdf5_packing(const std::string& path, Isolation isolation,
+                          double base_seconds = kIsolatedReadBaseSeconds);
 
 /// Writes a packing as HDF5 (datasets /positions N x d and /radii N; root
 /// attributes d, box, boundary, the packing's own attributes and the
