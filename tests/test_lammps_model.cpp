@@ -8,6 +8,8 @@
 #include <cstdlib>
 #include <fstream>
 #include <random>
+#include <sstream>
+#include <string>
 
 #include "experiment/lammps_fit.hpp"
 #include "grid/error.hpp"
@@ -136,6 +138,37 @@ TEST(LammpsModel, FitRecoversKnownCoefficients) {
                 1e-6 * truth.c[static_cast<std::size_t>(k)])
         << "term " << k;
   EXPECT_LT(f.rms_rel, 1e-9);
+}
+
+/// The shipped coefficients are the fit of the shipped training runs
+/// (results/lammps-model/train.csv, written by bench/lammps_model): refitting
+/// them gives default_lammps_coefficients() to the 6 digits it is written with.
+TEST(LammpsModel, DefaultCoefficientsAreTheFitOfTheShippedRuns) {
+  constexpr double kPrintedRelTol = 1e-5;
+  std::ifstream f(std::string(HGRID_SOURCE_DIR) + "/results/lammps-model/train.csv");
+  ASSERT_TRUE(f) << "results/lammps-model/train.csv";
+  std::vector<LammpsSample> samples;
+  std::vector<std::string> packings;
+  for (std::string line; std::getline(f, line);) {
+    if (line.empty() || line[0] == '#' || line.rfind("packing,", 0) == 0) continue;
+    std::vector<std::string> cell;
+    std::stringstream ss(line);
+    for (std::string c; std::getline(ss, c, ',');) cell.push_back(c);
+    ASSERT_EQ(cell.size(), 12u) << line;
+    const auto at = std::find(packings.begin(), packings.end(), cell[0]);
+    if (at == packings.end()) packings.push_back(cell[0]);
+    LammpsSample s;
+    s.packing = static_cast<int>(std::find(packings.begin(), packings.end(), cell[0]) - packings.begin());
+    s.seconds = std::stod(cell[3]);
+    s.terms = {std::stod(cell[5]), std::stod(cell[6]), std::stod(cell[7]), std::stod(cell[8]),
+               std::stod(cell[9]), std::stod(cell[10]), std::stod(cell[11])};
+    samples.push_back(s);
+  }
+  EXPECT_EQ(packings.size(), 5u);
+  const LammpsFit fit = fit_lammps(samples);
+  const LammpsCoefficients shipped = default_lammps_coefficients();
+  for (std::size_t k = 0; k < shipped.c.size(); ++k)
+    EXPECT_NEAR(fit.coef.c[k], shipped.c[k], kPrintedRelTol * shipped.c[k]) << "term " << k;
 }
 
 TEST(LammpsModel, CoefficientsFileFromTheEnvironment) {
