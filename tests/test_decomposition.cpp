@@ -24,24 +24,26 @@ Simulated simulate(const Scene<D>& s, const std::vector<double>& sizes, int P, i
   const Bricks<D> bricks(s.box, P, B);
   double r_max = 0;
   for (const auto& q : s.spheres) r_max = std::max(r_max, q.r);
-  std::vector<std::vector<Sphere<D>>> sph(P);
-  std::vector<std::vector<std::uint64_t>> ids(P);
-  for (std::size_t k = 0; k < s.spheres.size(); ++k) {
-    const int o = bricks.owner(s.spheres[k].x);
-    sph[o].push_back(s.spheres[k]);
-    ids[o].push_back(k);
-  }
+  // Each particle placed as the transport does: its owner and the ranks
+  // that need it as a ghost, in one call.
+  std::vector<std::vector<Sphere<D>>> sph(P), ghost_sph(P);
+  std::vector<std::vector<std::uint64_t>> ids(P), ghost_ids(P);
   Simulated out;
-  for (int r = 0; r < P; ++r) out.owned.push_back(ids[r].size());
-  std::vector<std::vector<Sphere<D>>> ghost_sph(P);
-  std::vector<std::vector<std::uint64_t>> ghost_ids(P);
-  for (int r = 0; r < P; ++r) {
-    out.shell_ghosts += shell_ghost_count(bricks, std::span<const Sphere<D>>(sph[r]), r, r_max);
-    for_each_ghost(bricks, std::span<const Sphere<D>>(sph[r]), r, [&](std::size_t k, int to) {
-      ghost_sph[to].push_back(sph[r][k]);
-      ghost_ids[to].push_back(ids[r][k]);
+  const double longest = longest_side(bricks);
+  for (std::size_t k = 0; k < s.spheres.size(); ++k) {
+    const auto& q = s.spheres[k];
+    const int o = bricks.place(q.x, ghost_reach(q.r, longest), [&](int to) {
+      ghost_sph[to].push_back(q);
+      ghost_ids[to].push_back(k);
       ++out.ghosts;
     });
+    EXPECT_EQ(o, bricks.owner(q.x));
+    sph[o].push_back(q);
+    ids[o].push_back(k);
+  }
+  for (int r = 0; r < P; ++r) {
+    out.owned.push_back(ids[r].size());
+    out.shell_ghosts += shell_ghost_count(bricks, std::span<const Sphere<D>>(sph[r]), r, r_max);
   }
   for (int r = 0; r < P; ++r) {
     const std::size_t n_owned = sph[r].size();
@@ -50,11 +52,16 @@ Simulated simulate(const Scene<D>& s, const std::vector<double>& sizes, int P, i
     const HGrid<D, B> grid(std::span<const Sphere<D>>(sph[r]), s.box, GridParams{sizes, S});
     std::vector<std::vector<std::pair<std::uint64_t, std::uint64_t>>> per_thread(resolve_threads(threads));
     const RankCounts c = query_reported_pairs<S, Counted>(
-        grid, std::span<const Sphere<D>>(sph[r]), std::span<const std::uint64_t>(ids[r]), n_owned,
+        grid, std::span<const Sphere<D>>(sph[r]), n_owned, bricks, r, std::span<const std::uint64_t>(ids[r]),
         [&](int t, std::uint64_t a, std::uint64_t b) { per_thread[t].emplace_back(a, b); }, threads);
     std::uint64_t n = 0;
     for (const auto& v : per_thread) out.pairs.insert(out.pairs.end(), v.begin(), v.end()), n += v.size();
     EXPECT_EQ(c.reported, n);
+    // Counting alone (no global indices) reports as many.
+    EXPECT_EQ((query_reported_pairs<S, Counted>(grid, std::span<const Sphere<D>>(sph[r]), n_owned, bricks, r, {},
+                                                 CountOnly{}, threads)
+                   .reported),
+              n);
     EXPECT_EQ(c.work.particles(), sph[r].size());
   }
   std::sort(out.pairs.begin(), out.pairs.end());

@@ -3,9 +3,9 @@
 // the rule that reports every overlapping pair on exactly one rank. No MPI
 // here: the tool's transport (src/mpi) and the tests use the same rules.
 //
-// The rule (docs/MODEL.md section 10). Order the particles by (r, global
-// index). A pair is reported by the rank that owns the pair's lower
-// particle a. Its partner b has r_b >= r_a, so |x_a - x_b| < r_a + r_b <=
+// The rule (docs/MODEL.md section 10). A pair of particles with one owner
+// is reported by that owner. Otherwise order the two by (r, owner rank): the
+// pair is reported by the rank that owns its lower particle a. Its partner b has r_b >= r_a, so |x_a - x_b| < r_a + r_b <=
 // 2 r_b: b lies within 2 r_b of a's brick. Hence a particle of radius r is
 // sent only to the bricks within 2 r of its centre (plus a rounding margin):
 // a small particle only as far as a small search reaches, instead of one
@@ -24,9 +24,10 @@
 
 namespace hgrid {
 
-/// True if particle a comes before b in the reporting order: (radius, index).
-inline bool reports_before(double r_a, std::uint64_t id_a, double r_b, std::uint64_t id_b) {
-  return r_a < r_b || (r_a == r_b && id_a < id_b);
+/// True if particle a comes before b in the reporting order: (radius, owner
+/// rank). Only asked of particles with different owners.
+inline bool reports_before(double r_a, int owner_a, double r_b, int owner_b) {
+  return r_a < r_b || (r_a == r_b && owner_a < owner_b);
 }
 
 /// The distance up to which a particle of radius r is sent as a ghost: 2 r,
@@ -100,18 +101,60 @@ class Bricks {
   /// closer than `reach` to x (periodic: its nearest image).
   template <class F>
   void for_each_within(const std::array<double, D>& x, double reach, int self, F&& f) const {
-    // Most particles are farther than their reach from every face of their
-    // own brick: then no other brick is within reach (periodic images lie
-    // beyond the faces too).
     std::array<double, D> xs;
-    bool inside = true;
+    int brick = 0;
+    if (!inside(x, reach, xs, brick)) near_ranks(xs, reach, self, f);
+  }
+
+  /// The rank owning centre x (owner(x)), and f(rank) for every other rank
+  /// whose brick comes closer than `reach` to x (for_each_within(x, reach,
+  /// owner(x), f)), in one pass over the axes.
+  template <class F>
+  int place(const std::array<double, D>& x, double reach, F&& f) const {
+    std::array<double, D> xs;
+    int own = 0;
+    if (!inside(x, reach, xs, own)) near_ranks(xs, reach, own, f);
+    return own;
+  }
+
+  /// Volume of one brick's halo of width w: the brick grown by w (Steiner's
+  /// formula for a box) minus the brick, at most the rest of the box.
+  double halo_volume(double w) const {
+    std::array<double, D> e;
+    double box_volume = 1, brick = 1;
+    for (int a = 0; a < D; ++a) e[a] = box_[a] / dims_[a], brick *= e[a], box_volume *= box_[a];
+    double grown;
+    if constexpr (D == 2) {
+      grown = brick + 2 * (e[0] + e[1]) * w + M_PI * w * w;
+    } else {
+      grown = brick + 2 * (e[0] * e[1] + e[1] * e[2] + e[0] * e[2]) * w + M_PI * (e[0] + e[1] + e[2]) * w * w +
+              4.0 / 3.0 * M_PI * w * w * w;
+    }
+    return std::min(grown, box_volume) - brick;
+  }
+
+ private:
+  /// xs: x wrapped (periodic); brick: the rank owning x. True if x is
+  /// farther than `reach` from every face of that brick (most particles):
+  /// then no other brick is within reach (periodic images lie beyond the
+  /// faces too).
+  bool inside(const std::array<double, D>& x, double reach, std::array<double, D>& xs, int& brick) const {
+    bool in = true;
+    brick = 0;
     for (int a = 0; a < D; ++a) {
       xs[a] = boundary_ == Boundary::periodic ? detail::wrap(x[a], box_[a]) : x[a];
-      if (dims_[a] == 1) continue;
+      if (dims_[a] == 1) continue;  // brick index 0, no face to come near
       const int b = index(a, xs[a]);
-      inside = inside && xs[a] - reach > lo(a, b) && xs[a] + reach < hi(a, b);
+      brick = brick * dims_[a] + b;
+      in = in && xs[a] - reach > lo(a, b) && xs[a] + reach < hi(a, b);
     }
-    if (inside) return;
+    return in;
+  }
+
+  /// f(rank) for every rank but `self` whose brick is within reach of the
+  /// wrapped centre xs.
+  template <class F>
+  void near_ranks(const std::array<double, D>& xs, double reach, int self, F&& f) const {
     // Per axis: the bricks within reach and their distance (buffers kept
     // per thread: no allocation per call; so f must not call this again).
     thread_local std::array<std::vector<std::pair<int, double>>, D> near;
@@ -159,23 +202,6 @@ class Bricks {
     }
   }
 
-  /// Volume of one brick's halo of width w: the brick grown by w (Steiner's
-  /// formula for a box) minus the brick, at most the rest of the box.
-  double halo_volume(double w) const {
-    std::array<double, D> e;
-    double box_volume = 1, brick = 1;
-    for (int a = 0; a < D; ++a) e[a] = box_[a] / dims_[a], brick *= e[a], box_volume *= box_[a];
-    double grown;
-    if constexpr (D == 2) {
-      grown = brick + 2 * (e[0] + e[1]) * w + M_PI * w * w;
-    } else {
-      grown = brick + 2 * (e[0] * e[1] + e[1] * e[2] + e[0] * e[2]) * w + M_PI * (e[0] + e[1] + e[2]) * w * w +
-              4.0 / 3.0 * M_PI * w * w * w;
-    }
-    return std::min(grown, box_volume) - brick;
-  }
-
- private:
   static double axis_distance(double x, double lo, double hi) { return std::max({0.0, lo - x, x - hi}); }
   Extent<D> box_;
   Boundary boundary_;

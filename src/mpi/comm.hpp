@@ -70,22 +70,25 @@ std::vector<std::uint64_t> exchange_counts(const std::vector<std::uint64_t>& sen
 /// recv_counts and is filled in rank order.
 void exchange_items(const void* send, const std::vector<std::uint64_t>& send_counts, void* recv,
                     const std::vector<std::uint64_t>& recv_counts, std::size_t item_bytes);
+/// Same, with each rank's items at an offset of their own (in items):
+/// send_counts[r] items from send + send_at[r] to rank r, recv_counts[r]
+/// from rank r into recv + recv_at[r].
+void exchange_items_at(const void* send, const std::vector<std::uint64_t>& send_counts,
+                       const std::vector<std::uint64_t>& send_at, void* recv,
+                       const std::vector<std::uint64_t>& recv_counts, const std::vector<std::uint64_t>& recv_at,
+                       std::size_t item_bytes);
 }  // namespace detail
 
 /// All-to-all of trivially copyable items: `items` holds counts[0] items for
 /// rank 0, then counts[1] for rank 1, ... (counts has size() entries).
-/// Returns what every rank sent to this one, in rank order, with room for
-/// `spare` more items (appended later without moving the others).
+/// Returns what every rank sent to this one, in rank order.
 template <class T>
-UninitVector<T> all_to_all(std::span<const T> items, const std::vector<std::uint64_t>& counts,
-                           std::size_t spare = 0) {
+UninitVector<T> all_to_all(std::span<const T> items, const std::vector<std::uint64_t>& counts) {
   static_assert(std::is_trivially_copyable_v<T>);
   const std::vector<std::uint64_t> recv_counts = detail::exchange_counts(counts);
   std::uint64_t total = 0;
   for (auto c : recv_counts) total += c;
-  UninitVector<T> out;
-  out.reserve(total + spare);
-  out.resize(total);
+  UninitVector<T> out(total);
   detail::exchange_items(items.data(), counts, out.data(), recv_counts, sizeof(T));
   return out;
 }

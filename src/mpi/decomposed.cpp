@@ -5,6 +5,9 @@
 #include <chrono>
 #include <cstring>
 #include <optional>
+#include <span>
+#include <type_traits>
+#include <vector>
 
 #include "grid/decomposed_query.hpp"
 #include "grid/dispatch.hpp"
@@ -18,34 +21,72 @@ using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 
-/// Where each item goes: item k to rank dest[k], grouped by rank (a
-/// counting sort; the order within a rank kept).
-class Route {
+/// Where the particles read here go, in one all-to-all: particle k to its
+/// owner owner[k] as an own particle, and particle ghost_k[g] to rank
+/// ghost_to[g] as a ghost. Every rank receives its own particles first, then
+/// its ghosts; what a rank keeps for itself is written in place, not sent.
+class Delivery {
  public:
-  Route(std::span<const int> dest, int ranks) : dest_(dest), counts_(static_cast<std::size_t>(ranks), 0) {
-    for (int r : dest) ++counts_[static_cast<std::size_t>(r)];
+  Delivery(std::span<const int> owner, std::span<const std::size_t> ghost_k, std::span<const int> ghost_to)
+      : owner_(owner), ghost_k_(ghost_k), ghost_to_(ghost_to) {
+    const std::size_t P = static_cast<std::size_t>(size());
+    std::vector<std::uint64_t> own(P, 0), ghosts(P, 0);
+    for (int r : owner) ++own[static_cast<std::size_t>(r)];
+    for (int r : ghost_to) ++ghosts[static_cast<std::size_t>(r)];
+    for (auto* v : {&own, &ghosts}) {
+      sent_.push_back(*v);
+      got_.push_back(detail::exchange_counts(*v));
+    }
+    for (auto c : got_[0]) n_owned_ += c;
+    for (auto c : got_[1]) n_ghosts_ += c;
   }
-  const std::vector<std::uint64_t>& counts() const { return counts_; }
-  /// item(k) for every k, grouped by destination.
+  std::size_t owned() const { return n_owned_; }
+  std::size_t ghosts() const { return n_ghosts_; }
+
+  /// item(k) of every particle k read here, delivered: this rank's own
+  /// particles (owned() of them, in rank order of the senders), then its
+  /// ghosts.
   template <class T, class ItemOf>
-  UninitVector<T> gather(ItemOf&& item) const {
-    std::vector<std::uint64_t> at(counts_.size(), 0);
-    for (std::size_t r = 1; r < counts_.size(); ++r) at[r] = at[r - 1] + counts_[r - 1];
-    UninitVector<T> out(dest_.size());
-    for (std::size_t k = 0; k < dest_.size(); ++k) out[at[static_cast<std::size_t>(dest_[k])]++] = item(k);
+  UninitVector<T> deliver(ItemOf&& item) const {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const std::size_t P = static_cast<std::size_t>(size()), me = static_cast<std::size_t>(rank());
+    UninitVector<T> out(n_owned_ + n_ghosts_);
+    // Per kind (own, ghost): where each rank's items start in the send
+    // buffer and in `out`; this rank's own items go straight into `out`.
+    std::vector<std::uint64_t> send_at[2], recv_at[2], send_counts[2], recv_counts[2];
+    std::uint64_t sent = 0;
+    std::vector<T*> cursor[2];
+    for (int kind = 0; kind < 2; ++kind) {
+      send_at[kind].assign(P, 0), recv_at[kind].assign(P, 0);
+      send_counts[kind] = sent_[kind], recv_counts[kind] = got_[kind];
+      send_counts[kind][me] = recv_counts[kind][me] = 0;
+      std::uint64_t at = kind == 0 ? 0 : n_owned_;
+      for (std::size_t r = 0; r < P; ++r) recv_at[kind][r] = at, at += got_[kind][r];
+    }
+    for (std::size_t r = 0; r < P; ++r)
+      for (int kind = 0; kind < 2; ++kind) send_at[kind][r] = sent, sent += send_counts[kind][r];
+    UninitVector<T> buffer(sent);
+    for (int kind = 0; kind < 2; ++kind) {
+      cursor[kind].resize(P);
+      for (std::size_t r = 0; r < P; ++r)
+        cursor[kind][r] = r == me ? out.data() + recv_at[kind][r] : buffer.data() + send_at[kind][r];
+    }
+    for (std::size_t k = 0; k < owner_.size(); ++k) *cursor[0][static_cast<std::size_t>(owner_[k])]++ = item(k);
+    for (std::size_t g = 0; g < ghost_k_.size(); ++g)
+      *cursor[1][static_cast<std::size_t>(ghost_to_[g])]++ = item(ghost_k_[g]);
+    for (int kind = 0; kind < 2; ++kind)
+      detail::exchange_items_at(buffer.data(), send_counts[kind], send_at[kind], out.data(), recv_counts[kind],
+                        recv_at[kind], sizeof(T));
     return out;
   }
 
  private:
-  std::span<const int> dest_;
-  std::vector<std::uint64_t> counts_;
+  std::span<const int> owner_;
+  std::span<const std::size_t> ghost_k_;
+  std::span<const int> ghost_to_;
+  std::vector<std::vector<std::uint64_t>> sent_, got_;  // per kind (own, ghost), per rank
+  std::size_t n_owned_ = 0, n_ghosts_ = 0;
 };
-
-/// The routed items, with room for `spare` more (the ghosts to come).
-template <class T>
-UninitVector<T> send(const Route& route, const UninitVector<T>& items, std::size_t spare = 0) {
-  return all_to_all(std::span<const T>(items), route.counts(), spare);
-}
 
 std::uint64_t peak_rss_bytes() {
   rusage u{};
@@ -119,43 +160,37 @@ DecomposedRun run(Packing part, std::uint64_t first, std::uint64_t total, double
     out.radii_sample.assign(got.begin(), got.end());
   }
 
-  // Every particle to the owner of its brick (timed from when every rank
-  // has read its part: a slow read is not counted as exchange).
+  // Every particle to the owner of its brick and, as a ghost, to the ranks
+  // within its reach, decided where it was read (timed from when every
+  // rank has read its part: a slow read is not counted as exchange).
   barrier();
   auto t0 = Clock::now();
   UninitVector<Sphere<D>> spheres;
   UninitVector<std::uint64_t> ids;
+  std::size_t n_owned = 0;
   {
-    UninitVector<int> dest(part.size());
+    UninitVector<int> owner(part.size());
+    std::vector<std::size_t> ghost_k;
+    std::vector<int> ghost_to;
     auto sphere = [&](std::size_t k) {
       Sphere<D> s{{}, part.radii[k]};
       for (int a = 0; a < D; ++a) s.x[a] = part.positions[k * D + a];
       return s;
     };
-    for (std::size_t k = 0; k < dest.size(); ++k) dest[k] = bricks.owner(sphere(k).x);
-    const Route route(dest, P);
-    // Room for ghosts: an eighth of the own particles covers bricks much
-    // wider than the largest particle (a fuller layer moves the array once).
-    const std::size_t spare = part.size() / 8 + 1024;
-    spheres = send(route, route.gather<Sphere<D>>(sphere), spare);
-    ids = send(route, route.gather<std::uint64_t>([&](std::size_t k) { return first + k; }), spare);
+    for (std::size_t k = 0; k < owner.size(); ++k) {
+      const Sphere<D> s = sphere(k);
+      owner[k] = bricks.place(s.x, ghost_reach(s.r, longest), [&](int to) {
+        ghost_k.push_back(k);
+        ghost_to.push_back(to);
+      });
+    }
+    const Delivery delivery(owner, ghost_k, ghost_to);
+    spheres = delivery.deliver<Sphere<D>>(sphere);
+    // Global indices for the pairs' output only (counting needs none).
+    if (pairs_out) ids = delivery.deliver<std::uint64_t>([&](std::size_t k) { return first + k; });
+    n_owned = delivery.owned();
+    rep.ghosts = delivery.ghosts();
     part = Packing{};
-  }
-  const std::size_t n_owned = spheres.size();
-  // The ghosts: each own particle to the ranks within 2 r of it.
-  {
-    std::vector<std::uint32_t> which;
-    std::vector<int> dest;
-    for_each_ghost(bricks, std::span<const Sphere<D>>(spheres), me, [&](std::size_t k, int to) {
-      which.push_back(static_cast<std::uint32_t>(k));
-      dest.push_back(to);
-    });
-    const Route route(dest, P);
-    const auto ghost_spheres = send(route, route.gather<Sphere<D>>([&](std::size_t k) { return spheres[which[k]]; }));
-    const auto ghost_ids = send(route, route.gather<std::uint64_t>([&](std::size_t k) { return ids[which[k]]; }));
-    rep.ghosts = ghost_spheres.size();
-    spheres.insert(spheres.end(), ghost_spheres.begin(), ghost_spheres.end());
-    ids.insert(ids.end(), ghost_ids.begin(), ghost_ids.end());
   }
   rep.seconds_exchange = since(t0);
   rep.owned = n_owned;
@@ -180,10 +215,12 @@ DecomposedRun run(Packing part, std::uint64_t first, std::uint64_t total, double
   const bool top_down = g.search == Search::top_down;
   auto query = [&](auto&& f) {
     if (counted)
-      return top_down ? query_reported_pairs<Search::top_down, Counted>(grid, sp, id, n_owned, f, g.threads)
-                      : query_reported_pairs<Search::bottom_up, Counted>(grid, sp, id, n_owned, f, g.threads);
-    return top_down ? query_reported_pairs<Search::top_down, Uncounted>(grid, sp, id, n_owned, f, g.threads)
-                    : query_reported_pairs<Search::bottom_up, Uncounted>(grid, sp, id, n_owned, f, g.threads);
+      return top_down
+                 ? query_reported_pairs<Search::top_down, Counted>(grid, sp, n_owned, bricks, me, id, f, g.threads)
+                 : query_reported_pairs<Search::bottom_up, Counted>(grid, sp, n_owned, bricks, me, id, f, g.threads);
+    return top_down
+               ? query_reported_pairs<Search::top_down, Uncounted>(grid, sp, n_owned, bricks, me, id, f, g.threads)
+               : query_reported_pairs<Search::bottom_up, Uncounted>(grid, sp, n_owned, bricks, me, id, f, g.threads);
   };
   RankCounts c = pairs_out ? query(collect) : query(CountOnly{});
   rep.seconds_query = since(t0);

@@ -122,8 +122,20 @@ std::vector<std::uint64_t> exchange_counts(const std::vector<std::uint64_t>& sen
 
 void exchange_items(const void* send, const std::vector<std::uint64_t>& send_counts, void* recv,
                     const std::vector<std::uint64_t>& recv_counts, std::size_t item_bytes) {
+  std::vector<std::uint64_t> send_at(send_counts.size()), recv_at(recv_counts.size());
+  for (std::size_t r = 1; r < send_at.size(); ++r) send_at[r] = send_at[r - 1] + send_counts[r - 1];
+  for (std::size_t r = 1; r < recv_at.size(); ++r) recv_at[r] = recv_at[r - 1] + recv_counts[r - 1];
+  exchange_items_at(send, send_counts, send_at, recv, recv_counts, recv_at, item_bytes);
+}
+
+void exchange_items_at(const void* send, const std::vector<std::uint64_t>& send_counts,
+                       const std::vector<std::uint64_t>& send_at, void* recv,
+                       const std::vector<std::uint64_t>& recv_counts, const std::vector<std::uint64_t>& recv_at,
+                       std::size_t item_bytes) {
   if (!g_active) {
-    if (!send_counts.empty() && send_counts[0] > 0) std::memcpy(recv, send, send_counts[0] * item_bytes);
+    if (!send_counts.empty() && send_counts[0] > 0)
+      std::memcpy(static_cast<char*>(recv) + recv_at[0] * item_bytes,
+                  static_cast<const char*>(send) + send_at[0] * item_bytes, send_counts[0] * item_bytes);
     return;
   }
   // Items as one contiguous type, so that counts and offsets count items.
@@ -131,10 +143,9 @@ void exchange_items(const void* send, const std::vector<std::uint64_t>& send_cou
   MPI_Type_contiguous(as_int(item_bytes, "bytes per item"), MPI_BYTE, &item);
   MPI_Type_commit(&item);
   std::vector<int> sc(g_size), sd(g_size), rc(g_size), rd(g_size);
-  std::uint64_t at = 0, rat = 0;
   for (int r = 0; r < g_size; ++r) {
-    sc[r] = as_int(send_counts[r], "items"), sd[r] = as_int(at, "items"), at += send_counts[r];
-    rc[r] = as_int(recv_counts[r], "items"), rd[r] = as_int(rat, "items"), rat += recv_counts[r];
+    sc[r] = as_int(send_counts[r], "items"), sd[r] = as_int(send_at[r], "items");
+    rc[r] = as_int(recv_counts[r], "items"), rd[r] = as_int(recv_at[r], "items");
   }
   MPI_Alltoallv(send, sc.data(), sd.data(), item, recv, rc.data(), rd.data(), item, MPI_COMM_WORLD);
   MPI_Type_free(&item);

@@ -28,5 +28,12 @@ void exchange_items(const void* send, const std::vector<std::uint64_t>& send_cou
                     const std::vector<std::uint64_t>&, std::size_t item_bytes) {
   if (!send_counts.empty() && send_counts[0] > 0) std::memcpy(recv, send, send_counts[0] * item_bytes);
 }
+void exchange_items_at(const void* send, const std::vector<std::uint64_t>& send_counts,
+                       const std::vector<std::uint64_t>& send_at, void* recv, const std::vector<std::uint64_t>&,
+                       const std::vector<std::uint64_t>& recv_at, std::size_t item_bytes) {
+  if (!send_counts.empty() && send_counts[0] > 0)
+    std::memcpy(static_cast<char*>(recv) + recv_at[0] * item_bytes,
+                static_cast<const char*>(send) + send_at[0] * item_bytes, send_counts[0] * item_bytes);
+}
 }  // namespace detail
 }  // namespace hgrid::mpi
