@@ -66,7 +66,8 @@ py::dict recommend(const DoubleArray& radii, double nu, int d, const std::option
   const Search s = parse_search(search);
   const std::vector<double> r_list = to_vector(radii, "radii");
   const std::optional<TimeModelUse> time = choose_time_model(cost, k, d, static_cast<double>(r_list.size()));
-  const Recommendation r = recommend_cell_sizes(r_list, ModelParams{d, nu, k.K, s}, time);
+  Recommendation r = recommend_cell_sizes(r_list, ModelParams{d, nu, k.K, s}, time);
+  add_lammps_collections(r, r_list, d, nu);
   py::dict out = py::module_::import("json").attr("loads")(recommendation_json(r, k, s, 0.0));
   out["d"] = d;
   out["nu"] = nu;

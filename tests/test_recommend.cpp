@@ -211,7 +211,8 @@ TEST(PeerSettings, RecommendedLammpsLinesFindEveryPair) {
   if (!lmp) GTEST_SKIP() << "lmp not on PATH (apt-get install lammps)";
   const auto s = random_scene<3>(400, 0.4, -3, 6, Boundary::periodic, 9);
   const Packing p = packing_from(s, Boundary::periodic);
-  const Recommendation r = recommend_cell_sizes(p.radii, ModelParams{3, p.packing_fraction(), 0.2, Search::top_down});
+  Recommendation r = recommend_cell_sizes(p.radii, ModelParams{3, p.packing_fraction(), 0.2, Search::top_down});
+  add_lammps_collections(r, p.radii, 3, p.packing_fraction());
   const fs::path dir = fs::temp_directory_path() / ("hgridlab_rec_" + std::to_string(::getpid()));
   LammpsScript sc;
   sc.builds = 2;

@@ -108,7 +108,8 @@ void run_recommend(const RecommendOptions& o) {
   // The time model: asked for, or by default when the calibration that gave
   // K has one for this dimension.
   const std::optional<TimeModelUse> time = choose_time_model(o.cost, k, in.d, double(s.size()));
-  const Recommendation r = recommend_cell_sizes(s.radii, ModelParams{in.d, in.nu, k.K, search}, time);
+  Recommendation r = recommend_cell_sizes(s.radii, ModelParams{in.d, in.nu, k.K, search}, time);
+  add_lammps_collections(r, s.radii, in.d, in.nu);
   if (o.json) print_json(o, s, in, k, r, search);
   else print_text(o, s, in, k, r, search);
 }

@@ -38,8 +38,11 @@ Recommendation recommend_cell_sizes(const std::vector<double>& radii, const Mode
   out.model.sizes = out.sizes;
   out.linked_cell_size = 2 * out.r_max;
   out.linked_cell.sizes = {out.linked_cell_size};
-  out.lammps_collections = lammps_collections_for(radii, p.d, p.nu, &out.lammps_model_source);
   return out;
+}
+
+void add_lammps_collections(Recommendation& r, const std::vector<double>& radii, int d, double nu) {
+  r.lammps_collections = lammps_collections_for(radii, d, nu, &r.lammps_model_source);
 }
 
 std::vector<double> lammps_collections_for(const std::vector<double>& radii, int d, double nu, std::string* source) {

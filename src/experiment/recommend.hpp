@@ -34,7 +34,8 @@ struct Recommendation {
   double speedup_seconds() const { return seconds ? linked_cell_seconds->total() / seconds->total() : 0; }
   /// LAMMPS `neighbor multi` collection bounds (diameters, radii's unit)
   /// from its own cost model (model/lammps_multi.hpp), for a cubic periodic
-  /// box of the particles at nu; where its coefficients came from.
+  /// box of the particles at nu; where its coefficients came from. Filled by
+  /// add_lammps_collections (callers that want only the sizes skip its search).
   std::vector<double> lammps_collections;
   std::string lammps_model_source;
 };
@@ -46,6 +47,10 @@ struct Recommendation {
 /// another unit give the same sizes in that unit. Throws InputError.
 Recommendation recommend_cell_sizes(const std::vector<double>& radii, const ModelParams& p,
                                     const std::optional<TimeModelUse>& time = std::nullopt);
+
+/// Fills r.lammps_collections and r.lammps_model_source with
+/// lammps_collections_for(radii, d, nu).
+void add_lammps_collections(Recommendation& r, const std::vector<double>& radii, int d, double nu);
 
 /// LAMMPS collection bounds for `radii` at packing fraction nu in d
 /// dimensions (a cubic periodic box), with lammps_coefficients(source).
