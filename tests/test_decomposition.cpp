@@ -49,7 +49,7 @@ Simulated simulate(const Scene<D>& s, const std::vector<double>& sizes, int P, i
     const std::size_t n_owned = sph[r].size();
     sph[r].insert(sph[r].end(), ghost_sph[r].begin(), ghost_sph[r].end());
     ids[r].insert(ids[r].end(), ghost_ids[r].begin(), ghost_ids[r].end());
-    const HGrid<D, B> grid(std::span<const Sphere<D>>(sph[r]), s.box, GridParams{sizes, S});
+    const HGrid<D, B> grid(std::span<const Sphere<D>>(sph[r].data(), n_owned), s.box, GridParams{sizes, S});
     std::vector<std::vector<std::pair<std::uint64_t, std::uint64_t>>> per_thread(resolve_threads(threads));
     const RankCounts c = query_reported_pairs<S, Counted>(
         grid, std::span<const Sphere<D>>(sph[r]), n_owned, bricks, r, std::span<const std::uint64_t>(ids[r]),
@@ -62,7 +62,7 @@ Simulated simulate(const Scene<D>& s, const std::vector<double>& sizes, int P, i
                                                  CountOnly{}, threads)
                    .reported),
               n);
-    EXPECT_EQ(c.work.particles(), sph[r].size());
+    EXPECT_EQ(c.work.particles(), n_owned);
   }
   std::sort(out.pairs.begin(), out.pairs.end());
   return out;
@@ -99,6 +99,54 @@ void sweep(std::size_t n, std::uint64_t seed) {
           ASSERT_LE(got.ghosts, got.shell_ghosts);
         }
       }
+}
+
+/// HGrid::for_each_overlap_below against brute force: the grid holds the
+/// first half of a scene, the second half probes it; every overlapping
+/// (probe, particle) pair with r_particle <= r_probe must come out once,
+/// and nothing that does not overlap or lies above the probe's level.
+template <int D, Boundary B>
+void probes_against_brute(std::uint64_t seed) {
+  for (double omega : {1.0, 10.0, 1000.0}) {
+    SCOPED_TRACE(::testing::Message() << "seed=" << seed << " d=" << D << " " << to_string(B) << " omega=" << omega);
+    const auto s = random_scene<D>(600, 0.5, -3.0, omega, B, seed++);
+    double rmin = 1e300, rmax = 0;
+    for (const auto& p : s.spheres) rmin = std::min(rmin, p.r), rmax = std::max(rmax, p.r);
+    const auto sizes = exponential_sizes(3, rmin, rmax);
+    const std::size_t half = s.spheres.size() / 2;
+    const std::span<const Sphere<D>> all(s.spheres);
+    const HGrid<D, B> grid(all.first(half), s.box, GridParams{sizes, Search::top_down});
+    std::vector<Pair> got;
+    grid.for_each_overlap_below(all.subspan(half), [&](std::uint32_t k, std::uint32_t j) {
+      got.emplace_back(static_cast<std::uint32_t>(half + k), j);
+    });
+    std::sort(got.begin(), got.end());
+    ASSERT_EQ(std::adjacent_find(got.begin(), got.end()), got.end()) << "a pair came twice";
+    const auto level = [&](double r) {  // level of insertion (Eq. 3), the top one for larger spheres
+      std::size_t h = 0;
+      while (h + 1 < sizes.size() && 2 * r > grid.sizes()[h]) ++h;
+      return h;
+    };
+    std::vector<Pair> must;  // overlapping, the grid's particle no larger than the probe
+    for (const auto& [i, j] : brute_pairs<D, B>(s)) {
+      if (i < half && j >= half && s.spheres[i].r <= s.spheres[j].r) must.emplace_back(j, i);
+      if (j < half && i >= half && s.spheres[j].r <= s.spheres[i].r) must.emplace_back(i, j);
+    }
+    std::sort(must.begin(), must.end());
+    ASSERT_TRUE(std::includes(got.begin(), got.end(), must.begin(), must.end())) << "a pair was missed";
+    for (const auto& [k, j] : got) {
+      ASSERT_LT(j, half);
+      ASSERT_LE(level(s.spheres[j].r), level(s.spheres[k].r));
+      ASSERT_TRUE((detail::overlap<D, B>(s.spheres[k], s.spheres[j], s.box))) << k << " " << j;
+    }
+  }
+}
+
+TEST(Decomposition, ProbesAgainstBrute) {
+  probes_against_brute<2, Boundary::walls>(900);
+  probes_against_brute<2, Boundary::periodic>(910);
+  probes_against_brute<3, Boundary::walls>(920);
+  probes_against_brute<3, Boundary::periodic>(930);
 }
 
 TEST(Decomposition, D2Walls) { sweep<2, Boundary::walls, Search::top_down>(400, 100); }

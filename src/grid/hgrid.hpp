@@ -58,7 +58,18 @@ class HGrid {
     return query<S, Count>(std::forward<F>(f), params_.threads);
   }
 
-  /// Same, with the direction and threads of the params struct.
+  /// Calls f(k, j) for every particle j of the grid (input index) that
+  /// overlaps probes[k] and lies on a level no higher than the probe's own
+  /// level of insertion (Eq. 3; the top level for a probe larger than every
+  /// cell): every j with r_j <= r_k among them. The probes need not be in
+  /// the grid. One thread; the counters are those of the searches, counted
+  /// as a Top-Down cross-level search counts its own (a probe's own level
+  /// as its diagonal). A decomposed search finds the pairs of its ghosts
+  /// this way (grid/decomposed_query.hpp).
+  template <class Count = Uncounted, class F>
+  Counters for_each_overlap_below(std::span<const Sphere<D>> probes, F&& f) const;
+
+  /// Same as query, with the direction and threads of the params struct.
   template <class Count = Uncounted, class F>
   Counters for_each_pair(F&& f) const {
     return params_.search == Search::top_down ? query<Search::top_down, Count>(f)
@@ -311,7 +322,9 @@ class HGrid {
   /// Buffers the overlapping pairs (as sorted positions) and hands them to
   /// the callback, as input indices i < j, a batch at a time, so that an
   /// overlap test can do without a branch on its outcome.
-  template <class F>
+  /// Probe = true: the first of a pair is a probe's number, handed out as
+  /// it is (for_each_overlap_below), f(probe, input index).
+  template <class F, bool Probe = false>
   struct Emit {
     F& f;
     const std::uint32_t* id;
@@ -319,8 +332,12 @@ class HGrid {
     std::uint32_t n = 0;
     void flush() {
       for (std::uint32_t k = 0; k < n; ++k) {
-        const std::uint32_t i = id[buf[k].first], j = id[buf[k].second];
-        f(std::min(i, j), std::max(i, j));  // no branch: the order of i and j is random
+        if constexpr (Probe) {
+          f(buf[k].first, id[buf[k].second]);
+        } else {
+          const std::uint32_t i = id[buf[k].first], j = id[buf[k].second];
+          f(std::min(i, j), std::max(i, j));  // no branch: the order of i and j is random
+        }
       }
       n = 0;
     }
@@ -333,7 +350,12 @@ class HGrid {
   /// displacement (same result, bit for bit).
   template <class Count, Boundary TB = B, class E>
   void test(std::uint32_t p, std::uint32_t q, E& e, Counters& out) const {
-    if (detail::overlap<D, TB>(sorted_[p], sorted_[q], box_)) {
+    test<Count, TB>(sorted_[p], p, q, e, out);
+  }
+  /// Same, for sphere sp, handed out as p (a probe's number, or sorted_[p]).
+  template <class Count, Boundary TB = B, class E>
+  void test(const Sphere<D>& sp, std::uint32_t p, std::uint32_t q, E& e, Counters& out) const {
+    if (detail::overlap<D, TB>(sp, sorted_[q], box_)) {
       if constexpr (Count::enabled) ++out.contacts;
       e.buf[e.n++] = {p, q};
       if (e.n == e.buf.size()) e.flush();
@@ -345,7 +367,12 @@ class HGrid {
   /// stay in registers.
   template <class Count, Boundary TB = B, class E>
   void test_list(std::uint32_t p, const std::uint32_t* cand, std::uint32_t n_cand, E& e, Counters& out) const {
-    const Sphere<D> sp = sorted_[p];
+    test_list<Count, TB>(sorted_[p], p, cand, n_cand, e, out);
+  }
+  /// Same, for sphere sp, handed out as p.
+  template <class Count, Boundary TB = B, class E>
+  void test_list(const Sphere<D> sp, std::uint32_t p, const std::uint32_t* cand, std::uint32_t n_cand, E& e,
+                 Counters& out) const {
     const Sphere<D>* const s = sorted_.data();
     std::uint32_t n = e.n;
     for (std::uint32_t m = 0; m < n_cand; ++m) {
@@ -372,7 +399,13 @@ class HGrid {
   };
 
   template <class Count, class F>
-  void cross_level(std::uint32_t p, int h, int j, F& f, Counters& out) const;
+  void cross_level(std::uint32_t p, int h, int j, F& f, Counters& out) const {
+    search_level<Count>(sorted_[p], p, h, j, f, out);
+  }
+  /// The cross-level search of sphere sp (of level h, handed out as p) on
+  /// level j: the cells of its search box (Eq. 4).
+  template <class Count, class F>
+  void search_level(const Sphere<D>& sp, std::uint32_t p, int h, int j, F& f, Counters& out) const;
   /// Same-level phase (and Bottom-Up's cross-level searches) of the cells of
   /// level h in words (ranked) or slots (hashed) [u0, u1).
   template <Search S, class Count, class F>

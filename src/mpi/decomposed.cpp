@@ -202,7 +202,8 @@ DecomposedRun run(Packing part, std::uint64_t first, std::uint64_t total, double
   t0 = Clock::now();
   std::optional<HGrid<D, B>> built;
   // A rejected param (a size below the largest diameter, say) fails every rank.
-  collective([&] { built.emplace(std::span<const Sphere<D>>(spheres), box, g); });
+  // (The grid holds the own particles; the ghosts search it afterwards.)
+  collective([&] { built.emplace(std::span<const Sphere<D>>(spheres.data(), n_owned), box, g); });
   const HGrid<D, B>& grid = *built;
   rep.seconds_build = since(t0);
   rep.grid_bytes = grid.memory_bytes();
