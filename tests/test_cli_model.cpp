@@ -45,14 +45,18 @@ TEST(CliModel, FixedLevelsAndBadInputs) {
 }
 
 TEST(CliModel, ExcludedPlacement) {
-  // Same sizes, two models; the excluded-volume model is 3D only.
+  // Same sizes, two models; in 2D up to omega = 50.
   const auto r = run("model --nu 0.6 --alpha -3 --omega 10 --placement excluded --json");
   ASSERT_EQ(r.status, 0);
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["params"]["placement"], "excluded");
   EXPECT_GT(j["T_over_N"].get<double>(), 0.0);
   EXPECT_NE(j["T_over_N"].get<double>(), j["T_over_N_random"].get<double>());
-  for (const char* bad : {"model --d 2 --placement excluded", "model --placement dense",
+  const auto discs = run("model --d 2 --nu 0.4 --alpha -3 --omega 10 --placement excluded --json");
+  ASSERT_EQ(discs.status, 0);
+  EXPECT_LT(nlohmann::json::parse(discs.out)["T_over_N"].get<double>(),
+            nlohmann::json::parse(discs.out)["T_over_N_random"].get<double>());
+  for (const char* bad : {"model --d 2 --omega 100 --placement excluded", "model --placement dense",
                           "model --excluded-sizes", "model --omega 1e6 --placement excluded"})
     EXPECT_EQ(run(bad).status, 2) << bad;
 }

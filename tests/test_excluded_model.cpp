@@ -8,6 +8,7 @@
 
 #include "grid/error.hpp"
 #include "model/detail/py_mixture.hpp"
+#include "model/detail/py_numeric.hpp"
 #include "model/detail/walls.hpp"
 #include "model/detail/window.hpp"
 #include "model/distribution.hpp"
@@ -21,6 +22,8 @@ constexpr double kLowDensityRelTol = 1e-9;   // issue target: nu -> 0 equals the
 constexpr double kDiscretisationRelTol = 1e-3;
 constexpr double kIndependentAbsTol = 2e-3;  // vs the numpy/LAPACK evaluation, per particle
 constexpr double kWallBulkRelTol = 2e-3;     // per 1000 units of box length, walled vs bulk
+constexpr double kPyNumericRelTol = 2e-3;    // numerical PY (r step 1/80 diameter) vs closed-form contact values
+constexpr double kVirialAbsTol = 3e-4;       // 2D contact value at eta = 0.01 vs its first order in density
 
 double excess(const Distribution& d, double nu, const std::vector<double>& s, const ExcludedOptions& o = {}) {
   const ModelParams p{3, nu, 0.2, Search::top_down};
@@ -68,6 +71,42 @@ TEST(PyMixture, BinaryCompressibilityMatchesScaledParticlePressure) {
   }
 }
 
+detail::PyNumericGrid fine_grid(double range) {
+  detail::PyNumericGrid g;
+  g.dr = 1.0 / 80;
+  g.range = range;
+  g.nk = static_cast<int>(30 * range / std::numbers::pi);
+  g.r_out = 2.0;
+  return g;
+}
+
+TEST(PyNumeric, SpheresReproduceTheClosedFormContactValues) {
+  // The numerical scheme in 3D against Percus-Yevick's closed forms: g(sigma+)
+  // = (1 + eta/2) / (1 - eta)^2, and Lebowitz's mixture contact values.
+  for (double eta : {0.3, 0.5}) {
+    const detail::PyNumeric py(3, {eta * 6 / std::numbers::pi}, {1.0}, fine_grid(16));
+    EXPECT_NEAR(py.contact_value(0, 0) / ((1 + eta / 2) / std::pow(1 - eta, 2)), 1.0, kPyNumericRelTol) << eta;
+  }
+  const std::vector<double> rho = {0.3, 0.02}, sig = {1.0, 3.0};
+  double x2 = 0, x3 = 0;
+  for (int i = 0; i < 2; ++i) x2 += std::numbers::pi / 6 * rho[i] * sig[i] * sig[i], x3 += std::numbers::pi / 6 * rho[i] * std::pow(sig[i], 3);
+  const detail::PyNumeric py(3, rho, sig, fine_grid(48));
+  for (int a = 0; a < 2; ++a)
+    for (int b = a; b < 2; ++b) {
+      const double exact = 1 / (1 - x3) + 3 * x2 / std::pow(1 - x3, 2) * sig[a] * sig[b] / (sig[a] + sig[b]);
+      EXPECT_NEAR(py.contact_value(a, b) / exact, 1.0, kPyNumericRelTol) << a << b;
+    }
+}
+
+TEST(PyNumeric, DiscsAtLowDensityFollowTheFirstOrderInDensity) {
+  // To first order in rho, g(r) = 1 + rho A(r) outside contact, with A(r) the
+  // overlap area of two discs of radius sigma at distance r (exact, and
+  // Percus-Yevick is exact to that order): A(sigma) = sigma^2 (2 pi / 3 - sqrt(3) / 2).
+  const double eta = 0.01, rho = eta * 4 / std::numbers::pi;
+  const detail::PyNumeric py(2, {rho}, {1.0}, fine_grid(16));
+  EXPECT_NEAR(py.contact_value(0, 0), 1 + rho * (2 * std::numbers::pi / 3 - std::sqrt(3.0) / 2), kVirialAbsTol);
+}
+
 TEST(ExcludedWindow, ShellAreasIntegrateToTheWindowVolume) {
   const double c = 7.5, s = 6.0, dr = 0.01;
   const int nmax = static_cast<int>(std::sqrt(3.0) * (c + s) / dr) + 2;
@@ -95,6 +134,37 @@ TEST(ExcludedModel, LowDensityEqualsThePaperModel) {
   const ModelParams p{3, 1e-10, 0.2, Search::top_down};
   const double paper = evaluate_model(d, p, s).T_over_N, ex = evaluate_excluded_model(d, p, s).T_over_N;
   EXPECT_NEAR(ex / paper, 1.0, kLowDensityRelTol);
+}
+
+TEST(ExcludedWindow, CircleLengthsIntegrateToTheWindowArea) {
+  const double c = 7.5, s = 6.0, dr = 0.01;
+  const int nmax = static_cast<int>(std::sqrt(2.0) * (c + s) / dr) + 2;
+  const auto L = detail::window_circle_lengths(c, s, dr, nmax);
+  double a = 0;
+  for (int n = 1; n <= nmax; ++n) a += L[n] * dr;
+  EXPECT_NEAR(a, std::pow(2 * c + s, 2), 1e-3 * std::pow(2 * c + s, 2));
+}
+
+TEST(ExcludedModel, DiscsAtLowDensityEqualThePaperModel) {
+  const PowerLaw d(-3, 10);
+  const std::vector<double> s = {4.0, 8.0, 20.0};
+  const ModelParams p{2, 1e-10, 0.2, Search::top_down};
+  EXPECT_NEAR(evaluate_excluded_model(d, p, s).T_over_N / evaluate_model(d, p, s).T_over_N, 1.0, kLowDensityRelTol);
+}
+
+TEST(ExcludedModel, DiscsConvergedInTheirDiscretisation) {
+  const PowerLaw d(-3, 10);
+  const std::vector<double> s = {4.0, 8.0, 20.0};
+  const ModelParams p{2, 0.5, 0.2, Search::top_down};
+  const double ref = evaluate_excluded_model(d, p, s).T_over_N;
+  std::vector<ExcludedOptions> finer(4);
+  finer[0].disc_bins_per_level = 8;
+  finer[1].disc_dr = 0.02;
+  finer[2].disc_range = 6;
+  finer[3].k_max = 30;
+  for (const ExcludedOptions& o : finer)
+    EXPECT_NEAR(evaluate_excluded_model(d, p, s, o).T_over_N / ref, 1.0, kDiscretisationRelTol)
+        << o.disc_bins_per_level << " " << o.disc_dr << " " << o.disc_range << " " << o.k_max;
 }
 
 TEST(ExcludedModel, ConvergedInItsDiscretisation) {
@@ -131,12 +201,25 @@ TEST(ExcludedModel, DenseEdgesStayFinite) {
   }
   const PowerLaw mono(-3, 1.0001);
   EXPECT_TRUE(std::isfinite(excess(mono, 0.6, {2.0002})));
+  // One radius exactly (a monodisperse file), 2D and 3D.
+  const Empirical one(std::vector<double>(10, 0.5));
+  for (int d : {2, 3}) {
+    const ModelParams p{d, 0.3, 0.2, Search::top_down};
+    EXPECT_LT(evaluate_excluded_model(one, p, {2.0}).T_cd_over_N, evaluate_model(one, p, {2.0}).T_cd_over_N) << d;
+  }
 }
 
 TEST(ExcludedModel, RefusesWhatItCannotModel) {
   const PowerLaw d(-3, 10);
-  EXPECT_THROW(evaluate_excluded_model(d, ModelParams{2, 0.5, 0.2, Search::top_down}, {20.0}), InputError);
   EXPECT_THROW(evaluate_excluded_model(d, ModelParams{3, 1.0, 0.2, Search::top_down}, {20.0}), InputError);
+  EXPECT_THROW(evaluate_excluded_model(d, ModelParams{2, 0.5, 0.2, Search::top_down}, {20.0}, {}, WallBox{{100, 100, 0}}),
+               InputError);  // 2D: periodic only
+  try {
+    evaluate_excluded_model(PowerLaw(-3, 60), ModelParams{2, 0.3, 0.2, Search::top_down}, {120.0});
+    ADD_FAILURE() << "2D, omega = 60 accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "omega");
+  }
   const PowerLaw wide(-3, 1e6);
   try {
     evaluate_excluded_model(wide, ModelParams{3, 0.5, 0.2, Search::top_down}, {2e6});

@@ -3,12 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 
 #include "grid/error.hpp"
 #include "grid/geometry.hpp"
 #include "model/detail/py_mixture.hpp"
+#include "model/detail/py_numeric.hpp"
 #include "model/detail/walls.hpp"
 #include "model/detail/window.hpp"
 
@@ -140,41 +142,138 @@ std::vector<detail::WallProfile> wall_profiles(const std::vector<double>& rho, c
   }
   return prof;
 }
+
+// Largest size ratio of the 2D model: its solver's work grows like omega^2
+// per iteration (about 0.1 s at omega = 50 on one core), and the iteration
+// stops converging at lower packing fractions as omega grows.
+constexpr double kMaxDiscOmega = 50.0 * (1.0 + 1e-9);
+
+// 2D: h_ab from the numerical Percus-Yevick solution for discs (no closed
+// form). Per window: n_j int W h d^2y = int L_W(r) sum_b rho_b gamma_ab(r) dr
+// - sum_b rho_b int_0^sigma_ab (1 + gamma_ab) L_W dr, as h = gamma + c with
+// c = -(1 + gamma) inside contact and 0 outside.
+std::vector<double> disc_excess(const std::vector<Bin>& bins, const std::vector<double>& rho,
+                                const std::vector<double>& sigma, const std::vector<Window>& win, double nu,
+                                const ExcludedOptions& opt) {
+  const int B = static_cast<int>(bins.size());
+  const double smin = *std::min_element(sigma.begin(), sigma.end());
+  const double smax = *std::max_element(sigma.begin(), sigma.end());
+  double r_out = 0.0;
+  for (const Window& w : win) r_out = std::max(r_out, std::sqrt(2.0) * (w.c + w.s));
+  detail::PyNumericGrid g;
+  g.dr = opt.disc_dr * smin;
+  g.r_out = r_out + 2.0 * g.dr;  // covers ceil(reach / dr) + 1 points
+  g.range = r_out + opt.disc_range * smax;
+  g.nk = static_cast<int>(std::ceil(opt.k_max / smin * g.range / std::numbers::pi));
+  std::optional<detail::PyNumeric> py;
+  try {
+    py.emplace(2, rho, sigma, g);
+  } catch (const std::runtime_error&) {
+    char v[32];
+    std::snprintf(v, sizeof v, "%.4g", nu);
+    throw InputError("nu", std::string("the Percus-Yevick iteration for these discs did not converge at nu = ") + v +
+                               " (the 2D excluded-volume model reaches nu = 0.6 up to omega ~ 20, 0.45 at omega = 50)");
+  }
+  std::vector<double> excess(win.size(), 0.0);
+  for (int a = 0; a < B; ++a) {
+    std::vector<std::size_t> mine;
+    std::vector<std::vector<double>> weight;
+    int count = 1;
+    for (std::size_t w = 0; w < win.size(); ++w) {
+      if (win[w].bin != a) continue;
+      mine.push_back(w);
+      std::vector<double> wt(B, 0.0);
+      for (int b = 0; b < B; ++b)
+        if (bins[b].level == win[w].level_searched) wt[b] = rho[b];
+      weight.push_back(std::move(wt));
+      count = std::max(count, static_cast<int>(std::ceil(std::sqrt(2.0) * (win[w].c + win[w].s) / g.dr)) + 1);
+    }
+    const auto sums = py->gamma_sums(a, weight, count);
+    for (std::size_t q = 0; q < mine.size(); ++q) {
+      const Window& wi = win[mine[q]];
+      const int nmax = std::min(count - 1, static_cast<int>(std::ceil(std::sqrt(2.0) * (wi.c + wi.s) / g.dr)));
+      const std::vector<double> lw = detail::window_circle_lengths(wi.c, wi.s, g.dr, nmax);
+      const auto L_at = [&](double r) {
+        const double t = r / g.dr;
+        const auto n = static_cast<int>(t);
+        if (n >= nmax) return 0.0;
+        return lw[n] + (t - n) * (lw[n + 1] - lw[n]);
+      };
+      double x = 0.0;
+      for (int n = 1; n <= nmax; ++n) x += lw[n] * sums[q][n];
+      x *= g.dr;
+      for (int b = 0; b < B; ++b) {
+        if (weight[q][b] == 0.0) continue;
+        const std::vector<double>& gam = py->gamma_inside(a, b);
+        const int m = static_cast<int>(gam.size()) - 2;  // nodes n dr, n = 0 .. m, then sigma_ab
+        const double s_ab = 0.5 * (sigma[a] + sigma[b]), tail = s_ab - m * g.dr;
+        double in = 0.0;
+        for (int n = 1; n < m; ++n) in += (1.0 + gam[n]) * L_at(n * g.dr) * g.dr;
+        const double last = (1.0 + gam[m]) * L_at(m * g.dr), end = (1.0 + gam[m + 1]) * L_at(s_ab);
+        in += 0.5 * last * (m > 0 ? g.dr : 0.0) + 0.5 * (last + end) * tail;
+        x -= rho[b] * in;
+      }
+      excess[mine[q]] = x;
+    }
+  }
+  return excess;
+}
+// Level totals and T/N from the per-pair counts.
+ModelResult finish(ModelResult& res, const ModelParams& p, int L) {
+  res.T_cd_over_N = 0.0;
+  for (int h = 0; h < L; ++h) {
+    res.T_cd[h] = 0.0;
+    for (int j = 0; j < L; ++j) res.T_cd[h] += res.T_cd_pair[h * L + j];
+    res.T_cd_over_N += res.T_cd[h];
+  }
+  res.T_over_N = res.T_cd_over_N + p.K * res.T_ca_over_N;
+  return res;
+}
 }  // namespace
 
 ModelResult evaluate_excluded_model(const Distribution& dist, const ModelParams& p,
                                     const std::vector<double>& sizes, const ExcludedOptions& opt,
                                     const std::optional<WallBox>& walls) {
   ModelResult res = evaluate_model(dist, p, sizes);  // validates; the random-centre counts
-  if (p.d != 3)
-    throw InputError("d", "the excluded-volume model is 3D only (no closed-form Percus-Yevick structure for discs)");
+  if (p.d == 2 && walls) throw InputError("boundary", "the 2D excluded-volume model is for periodic boxes only");
+  if (p.d == 2 && dist.r_max() > kMaxDiscOmega * dist.r_min())
+    throw InputError("omega", "size ratio too large for the 2D excluded-volume model (omega up to " +
+                                  std::to_string(static_cast<int>(kMaxDiscOmega)) + ")");
   if (!(p.nu < 1.0)) throw InputError("nu", "must be < 1 for the excluded-volume model (got " + format_number(p.nu) + ")");
-  if (opt.bins_per_level < 1 || !(opt.k_max > 0) || !(opt.dk > 0))
-    throw InputError("excluded", "bins_per_level >= 1, k_max > 0 and dk > 0 required");
+  if (opt.bins_per_level < 1 || opt.disc_bins_per_level < 1 || !(opt.k_max > 0) || !(opt.dk > 0) ||
+      !(opt.disc_dr > 0) || !(opt.disc_range > 0))
+    throw InputError("excluded", "bins per level >= 1, k_max, dk, disc_dr and disc_range > 0 required");
   const int L = static_cast<int>(sizes.size());
-  const double vp = unit_ball_volume(3) * dist.moment(3, 0.0, dist.r_max());
+  const int d = p.d;
+  const double vp = unit_ball_volume(d) * dist.moment(d, 0.0, dist.r_max());
   const double c = p.nu / vp;  // number density
 
   // Size classes: bins_per_level geometric slices of each level's radii.
   std::vector<Bin> bins;
+  const int per_level = d == 2 ? opt.disc_bins_per_level : opt.bins_per_level;
   double lo = dist.r_min();
   for (int h = 0; h < L; ++h) {
     const double hi = std::min(0.5 * sizes[h], dist.r_max());
     if (hi > lo) {
-      for (int q = 0; q < opt.bins_per_level; ++q) {
-        const double a = lo * std::pow(hi / lo, double(q) / opt.bins_per_level);
-        const double b = q + 1 == opt.bins_per_level ? hi : lo * std::pow(hi / lo, double(q + 1) / opt.bins_per_level);
+      for (int q = 0; q < per_level; ++q) {
+        const double a = lo * std::pow(hi / lo, double(q) / per_level);
+        const double b = q + 1 == per_level ? hi : lo * std::pow(hi / lo, double(q + 1) / per_level);
         const double P = dist.moment(0, a, b);
         if (!(P > kMinBinProbability)) continue;
-        bins.push_back({h, P, dist.moment(1, a, b) / P, 2.0 * std::cbrt(dist.moment(3, a, b) / P)});
+        const double size = d == 3 ? std::cbrt(dist.moment(3, a, b) / P) : std::sqrt(dist.moment(2, a, b) / P);
+        bins.push_back({h, P, dist.moment(1, a, b) / P, 2.0 * size});
       }
       lo = hi;
     }
   }
+  if (bins.empty()) {  // one radius (r_min = r_max): one class, on the level that holds it
+    int h = 0;
+    while (h + 1 < L && 0.5 * sizes[h] < dist.r_max()) ++h;
+    bins.push_back({h, 1.0, dist.r_max(), 2.0 * dist.r_max()});
+  }
   const int B = static_cast<int>(bins.size());
   std::vector<double> rho(B), sigma(B);
   for (int b = 0; b < B; ++b) rho[b] = c * bins[b].P, sigma[b] = bins[b].sigma;
-  const detail::PyMixture py(rho, sigma);
 
   // Windows: every bin's own level and the levels it searches.
   std::vector<Window> win;
@@ -188,6 +287,13 @@ ModelResult evaluate_excluded_model(const Distribution& dist, const ModelParams&
     }
   }
   for (const Window& w : win) reach = std::max(reach, std::sqrt(3.0) * (w.c + w.s));
+  if (d == 2) {
+    const std::vector<double> excess = disc_excess(bins, rho, sigma, win, p.nu, opt);
+    for (std::size_t w = 0; w < win.size(); ++w)
+      res.T_cd_pair[bins[win[w].bin].level * L + win[w].level_searched] += win[w].half * bins[win[w].bin].P * excess[w];
+    return finish(res, p, L);
+  }
+  const detail::PyMixture py(rho, sigma);
 
   // Wave numbers k_m = m dk, m = 1..N-1, up to k_max.
   const double sigma_min = *std::min_element(sigma.begin(), sigma.end());
@@ -230,14 +336,7 @@ ModelResult evaluate_excluded_model(const Distribution& dist, const ModelParams&
   } else {
     apply_walls(*walls, c, bins, wall_profiles(rho, sigma, bins, opt), win, excess, sizes, res);
   }
-  res.T_cd_over_N = 0.0;
-  for (int h = 0; h < L; ++h) {
-    res.T_cd[h] = 0.0;
-    for (int j = 0; j < L; ++j) res.T_cd[h] += res.T_cd_pair[h * L + j];
-    res.T_cd_over_N += res.T_cd[h];
-  }
-  res.T_over_N = res.T_cd_over_N + p.K * res.T_ca_over_N;
-  return res;
+  return finish(res, p, L);
 }
 
 ExcludedSizes refine_sizes_excluded(const Distribution& dist, const ModelParams& p, std::vector<double> sizes,

@@ -13,11 +13,15 @@
 namespace hgrid {
 
 /// Discretisation of the excluded-volume model. The defaults change T/N by
-/// < 1e-3 relative when any of them is doubled (tests/test_excluded_model).
+/// < 1e-3 relative when any of them is doubled, or halved for a step
+/// (tests/test_excluded_model).
 struct ExcludedOptions {
   int bins_per_level = 6;     // size classes per level (geometric in r)
   double k_max = 15.0;        // largest wave number, in units of 1 / (2 r_min)
   double dk = 0.5;            // wave-number step, in units of pi / (largest window reach)
+  int disc_bins_per_level = 4;  // 2D: size classes per level
+  double disc_dr = 0.04;      // 2D: r step of the numerical Percus-Yevick solution, in units of 2 r_min
+  double disc_range = 3.0;    // 2D: its transforms' range beyond the largest window reach, in largest diameters
 };
 
 /// A box with walls [0, A_1] x [0, A_2] x [0, A_3]: centres of radius r lie
@@ -37,7 +41,9 @@ inline constexpr int kMaxWaveNumbers = 1 << 17;
 /// With walls, each pair's random-centre count and cell accesses are those of
 /// the walled box (exact for uniform centres in the accessible region) and the
 /// Percus-Yevick excess is the bulk one scaled by the same ratio.
-/// Throws InputError for d = 2 and for nu >= 1.
+/// In 2D (discs: no closed-form Percus-Yevick solution) h_ij comes from the
+/// numerical solution (detail::PyNumeric), periodic boxes only.
+/// Throws InputError for nu >= 1, for 2D walls, and past the supported omega.
 ModelResult evaluate_excluded_model(const Distribution& dist, const ModelParams& p,
                                     const std::vector<double>& sizes, const ExcludedOptions& opt = {},
                                     const std::optional<WallBox>& walls = std::nullopt);

@@ -15,8 +15,6 @@ PackingModels model_for_packing(const Packing& p, const std::vector<double>& siz
   out.random = evaluate_model(dist, mp, sizes);
   if (!with_excluded) {
     out.excluded_skipped = "not requested";
-  } else if (p.d != 3) {
-    out.excluded_skipped = "the excluded-volume model is 3D only";
   } else if (!(mp.nu < 1.0)) {
     out.excluded_skipped = "packing fraction >= 1";
   } else {

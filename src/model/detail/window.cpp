@@ -42,27 +42,48 @@ double shell_mean(double r, double c, double s) {
   for (const auto& u : directions()) w += window_1d(r * u[0], c, s) * window_1d(r * u[1], c, s) * window_1d(r * u[2], c, s);
   return w / kDirections;
 }
-// A_W is smooth between its kinks (r = c, c sqrt 2, c sqrt 3, ...): computed
-// on at most kShellNodes nodes across the window's reach and interpolated
-// linearly (relative error ~1e-6 against computing it at every r).
-constexpr int kShellNodes = 1024;
-}  // namespace
 
-std::vector<double> window_shell_areas(double c, double s, double dr, int nmax) {
+// The 2D window averaged over the circle of radius r (by symmetry, over a
+// quarter: kAngles midpoint angles in (0, pi/2)).
+constexpr int kAngles = 400;
+double circle_mean(double r, double c, double s) {
+  if (r <= c) return 1.0;
+  double w = 0.0;
+  for (int i = 0; i < kAngles; ++i) {
+    const double t = (i + 0.5) * (0.5 * std::numbers::pi / kAngles);
+    w += window_1d(r * std::cos(t), c, s) * window_1d(r * std::sin(t), c, s);
+  }
+  return w / kAngles;
+}
+
+// The window integrated over spheres (d = 3) or circles (d = 2) of radius
+// r_n = n dr: surface(r) times the mean over directions. That mean is smooth
+// between its kinks (r = c, c sqrt 2, c sqrt 3, ...): computed on at most
+// kShellNodes nodes across the window's reach and interpolated linearly
+// (relative error ~1e-6 against computing it at every r).
+constexpr int kShellNodes = 1024;
+std::vector<double> over_spheres(int d, double c, double s, double dr, int nmax) {
   std::vector<double> a(static_cast<std::size_t>(nmax) + 1, 0.0);
-  const double reach = std::sqrt(3.0) * (c + s);
+  const double reach = std::sqrt(double(d)) * (c + s);
   const double h = std::max(dr, reach / kShellNodes);
   std::vector<double> node(static_cast<std::size_t>(std::ceil(reach / h)) + 2);
-  for (std::size_t i = 0; i < node.size(); ++i) node[i] = shell_mean(i * h, c, s);
+  for (std::size_t i = 0; i < node.size(); ++i) node[i] = d == 3 ? shell_mean(i * h, c, s) : circle_mean(i * h, c, s);
   for (int n = 1; n <= nmax; ++n) {
     const double r = n * dr;
     if (r >= reach) break;
     const double t = r / h;
     const auto i = static_cast<std::size_t>(t);
     const double w = r <= c ? 1.0 : node[i] + (t - i) * (node[i + 1] - node[i]);
-    a[n] = 4.0 * std::numbers::pi * r * r * w;
+    a[n] = (d == 3 ? 4.0 * std::numbers::pi * r * r : 2.0 * std::numbers::pi * r) * w;
   }
   return a;
+}
+}  // namespace
+
+std::vector<double> window_shell_areas(double c, double s, double dr, int nmax) { return over_spheres(3, c, s, dr, nmax); }
+
+std::vector<double> window_circle_lengths(double c, double s, double dr, int nmax) {
+  return over_spheres(2, c, s, dr, nmax);
 }
 
 void sine_transform(std::vector<double>& x) {

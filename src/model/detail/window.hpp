@@ -16,6 +16,11 @@ double window_1d(double y, double c, double s);
 /// n = 1 .. nmax (entries past the window's reach are 0).
 std::vector<double> window_shell_areas(double c, double s, double dr, int nmax);
 
+/// L_W(r): the integral of the 2D window window_1d(y_1) window_1d(y_2) over the
+/// circle |y| = r (2 pi r where the circle lies inside the square |y_k| <= c),
+/// at r_n = n dr, n = 0 .. nmax.
+std::vector<double> window_circle_lengths(double c, double s, double dr, int nmax);
+
 /// In place, x[n] <- sum_{m=1}^{N-1} x[m] sin(pi m n / N) for n = 1..N-1 (DST-I;
 /// x[0] is ignored and set to 0). N = x.size() must be a power of two.
 void sine_transform(std::vector<double>& x);
