@@ -190,6 +190,23 @@ TEST(ExcludedModel, MatchesAnIndependentEvaluation) {
         << "alpha " << c.alpha << " omega " << c.omega << " nu " << c.nu;
 }
 
+TEST(ExcludedModel, DiscsMatchAnIndependentEvaluation) {
+  // Excess of T_cd/N over the paper model from a separate numpy evaluation
+  // (J0 by series and Hankel's expansion, Simpson inside contact on per-pair
+  // grids, plain Picard mixing): python3 tests/independent/excluded_pins_2d.py
+  // reproduces these numbers (~6 min).
+  struct Case { double alpha, omega, nu; std::vector<double> sizes; double excess; };
+  const std::vector<Case> cases = {{-3, 10, 0.4, {4, 8, 20}, -0.156092},
+                                   {-3, 10, 0.6, {4, 8, 20}, 0.092627},
+                                   {0, 5, 0.5, {3, 10}, -0.350251}};
+  for (const Case& c : cases) {
+    const PowerLaw d(c.alpha, c.omega);
+    const ModelParams p{2, c.nu, 0.2, Search::top_down};
+    const double e = evaluate_excluded_model(d, p, c.sizes).T_cd_over_N - evaluate_model(d, p, c.sizes).T_cd_over_N;
+    EXPECT_NEAR(e, c.excess, kIndependentAbsTol) << "alpha " << c.alpha << " omega " << c.omega << " nu " << c.nu;
+  }
+}
+
 TEST(ExcludedModel, DenseEdgesStayFinite) {
   // alpha = -1 and -d-1 (special cases of the power law), omega -> 1, nu near
   // random close packing: finite, and the cross-level excess of a big
