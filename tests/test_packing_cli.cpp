@@ -10,6 +10,7 @@
 
 #include "grid/error.hpp"
 #include "packing/packing.hpp"
+#include "packing/packing_sizes.hpp"
 #include "cli_support.hpp"
 #include "grid/threads.hpp"
 #include "support.hpp"
@@ -138,6 +139,36 @@ TEST_F(Cli, AssumedBoundaryIsStated) {
   EXPECT_NE(t.out.find("periodic (not in the file: assumed)"), std::string::npos) << t.out;
   const Result i = hgrid_run("info " + path("nb.csv"));
   EXPECT_NE(i.out.find("periodic (not in the file: assumed)"), std::string::npos) << i.out;
+}
+
+TEST(PackingSizes, LevelsFittedToTheSameCellsAreMerged) {
+  Packing p;
+  p.d = 2;
+  p.box = {100.0, 100.0, 0.0};
+  // 100 / 19.9 and 100 / 19.95 both give 5 cells per axis: one level.
+  EXPECT_EQ(merge_fitted_levels({3.0, 19.9, 19.95}, p), (std::vector<double>{3.0, 19.95}));
+  EXPECT_EQ(merge_fitted_levels({3.0, 16.0, 19.95}, p), (std::vector<double>{3.0, 16.0, 19.95}));  // 6 and 5 cells
+  p.boundary = Boundary::walls;  // cells not fitted: unchanged
+  EXPECT_EQ(merge_fitted_levels({3.0, 19.9, 19.95}, p), (std::vector<double>{3.0, 19.9, 19.95}));
+}
+
+TEST_F(Cli, ReportedSizesCanBeGivenBack) {
+  // The sizes `count --cells optimal` reports (the grid's) are a valid --sizes
+  // list with the same counts. This 2D packing's optimum had two top levels
+  // fitted to the same cells (reported twice, refused by --sizes).
+  const Result g = hgrid_run("generate --d 2 --n 100000 --nu 0.4 --alpha -3 --omega 10 --placement excluded --seed 1 --quiet --out " +
+                             path("p.h5"));
+  ASSERT_EQ(g.status, 0) << g.err;
+  const Result a = hgrid_run("count " + path("p.h5") + " --cells optimal --json");
+  ASSERT_EQ(a.status, 0) << a.err;
+  const auto ja = nlohmann::json::parse(a.out);
+  std::string sizes;
+  for (const auto& s : ja["sizes"]) sizes += (sizes.empty() ? "" : ",") + format_number(s.get<double>());
+  const Result b = hgrid_run("count " + path("p.h5") + " --sizes " + sizes + " --json");
+  ASSERT_EQ(b.status, 0) << b.err << sizes;
+  const auto jb = nlohmann::json::parse(b.out);
+  EXPECT_EQ(jb["narrow_phase_checks"], ja["narrow_phase_checks"]);
+  EXPECT_EQ(jb["cell_accesses"], ja["cell_accesses"]);
 }
 
 TEST_F(Cli, CountJson) {

@@ -1,6 +1,8 @@
 #include "packing/packing_sizes.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 
 #include "model/cell_sizes.hpp"
 #include "model/distribution.hpp"
@@ -25,7 +27,22 @@ std::vector<double> model_sizes(const Packing& p, const SizeRequest& r, Search s
     if (r.method != CellMethod::optimal) throw InputError("excluded-sizes", "applies to --cells optimal only");
     sizes = refine_sizes_excluded_reported(dist, mp, sizes).sizes;
   }
-  return sizes_for_grid(sizes, 2 * dist.r_max());
+  return merge_fitted_levels(sizes_for_grid(sizes, 2 * dist.r_max()), p);
+}
+
+std::vector<double> merge_fitted_levels(std::vector<double> sizes, const Packing& p) {
+  if (p.boundary != Boundary::periodic) return sizes;
+  const auto cells = [&](double s) {
+    std::array<double, 3> n{};
+    for (int a = 0; a < p.d; ++a) n[static_cast<std::size_t>(a)] = std::max(1.0, std::floor(p.box[static_cast<std::size_t>(a)] / s));
+    return n;
+  };
+  std::vector<double> out;
+  for (const double s : sizes) {
+    if (!out.empty() && cells(out.back()) == cells(s)) out.back() = s;  // the same cells: one level, the upper size
+    else out.push_back(s);
+  }
+  return out;
 }
 
 ExcludedSizes refine_sizes_excluded_reported(const Distribution& dist, const ModelParams& p,
