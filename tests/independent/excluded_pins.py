@@ -65,12 +65,11 @@ def moment(i, lo, hi, alpha, rmax):
     return C * (prim(hi, alpha + i) - prim(lo, alpha + i))
 
 
-def excess(alpha, omega, nu, sizes, B=6, kmax_fac=15, dk_fac=0.5):
-    L = len(sizes)
-    c = nu / (4 / 3 * np.pi * moment(3, 1.0, omega, alpha, omega))
+def size_classes(alpha, omega, sizes, B, d):
+    """B geometric classes per level: probability, mean radius, diameter keeping the mean r^d, level."""
     P, rm, sg, lv = [], [], [], []
     lo = 1.0
-    for h in range(L):
+    for h in range(len(sizes)):
         hi = min(sizes[h] / 2, omega)
         if hi > lo:
             e = lo * (hi / lo) ** (np.arange(B + 1) / B)
@@ -79,15 +78,26 @@ def excess(alpha, omega, nu, sizes, B=6, kmax_fac=15, dk_fac=0.5):
                 p = moment(0, e[q], e[q + 1], alpha, omega)
                 P.append(p)
                 rm.append(moment(1, e[q], e[q + 1], alpha, omega) / p)
-                sg.append(2 * np.cbrt(moment(3, e[q], e[q + 1], alpha, omega) / p))
+                sg.append(2 * (moment(d, e[q], e[q + 1], alpha, omega) / p) ** (1 / d))
                 lv.append(h)
             lo = hi
-    P, rm, sg, lv = map(np.array, (P, rm, sg, lv))
-    rho = c * P
+    return map(np.array, (P, rm, sg, lv))
+
+
+def windows(rm, lv, sizes):
+    """Top-Down: each class's own level (half: pairs once) and the levels below."""
     win = []
-    for a in range(len(P)):
+    for a in range(len(rm)):
         win.append((a, lv[a], sizes[lv[a]], sizes[lv[a]], 0.5))
         win += [(a, j, rm[a] + sizes[j] / 2, sizes[j], 1.0) for j in range(lv[a])]
+    return win
+
+
+def excess(alpha, omega, nu, sizes, B=6, kmax_fac=15, dk_fac=0.5):
+    c = nu / (4 / 3 * np.pi * moment(3, 1.0, omega, alpha, omega))
+    P, rm, sg, lv = size_classes(alpha, omega, sizes, B, 3)
+    rho = c * P
+    win = windows(rm, lv, sizes)
     reach = max(np.sqrt(3) * (w[2] + w[3]) for w in win)
     kmax, dk = kmax_fac / sg.min(), dk_fac * np.pi / reach / 2
     k = np.arange(1, int(kmax / dk)) * dk

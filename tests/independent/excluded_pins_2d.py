@@ -16,7 +16,13 @@ Not run by CI; run by hand:
 
 It prints the excess of T_cd/N over the paper's model for each case.
 """
+import os
+import sys
+
 import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from excluded_pins import moment, size_classes, windows  # noqa: E402  (binning and windows shared with the 3D script)
 
 NTH = 1024  # angles of the integral representation of J1
 
@@ -66,12 +72,6 @@ def j0_zeros(n):
     for _ in range(6):
         z = z + j0(z) / j1(z)
     return z
-
-
-def moment(i, lo, hi, alpha, rmax):
-    def prim(x, p): return np.log(x) if abs(p + 1) < 1e-14 else x ** (p + 1) / (p + 1)
-    C = 1 / (prim(rmax, alpha) - prim(1.0, alpha))
-    return C * (prim(hi, alpha + i) - prim(lo, alpha + i))
 
 
 def simpson_weights(n2):
@@ -126,30 +126,10 @@ def circle_length(r, c, s):
 
 
 def excess(alpha, omega, nu, sizes, B=4, kmax_fac=15, range_fac=3):
-    L = len(sizes)
     c = nu / (np.pi * moment(2, 1.0, omega, alpha, omega))
-    P, rm, sg, lv = [], [], [], []
-    lo = 1.0
-    for h in range(L):
-        hi = min(sizes[h] / 2, omega)
-        if hi > lo:
-            e = lo * (hi / lo) ** (np.arange(B + 1) / B)
-            e[-1] = hi
-            for q in range(B):
-                p = moment(0, e[q], e[q + 1], alpha, omega)
-                P.append(p)
-                rm.append(moment(1, e[q], e[q + 1], alpha, omega) / p)
-                sg.append(2 * np.sqrt(moment(2, e[q], e[q + 1], alpha, omega) / p))
-                lv.append(h)
-            lo = hi
-    P, rm, sg, lv = map(np.array, (P, rm, sg, lv))
+    P, rm, sg, lv = size_classes(alpha, omega, sizes, B, 2)
     rho = c * P
-    win = []
-    for a in range(len(P)):
-        h = lv[a]
-        win.append((a, h, sizes[h], sizes[h], 0.5))
-        for j in range(h):  # Top-Down: the lower levels
-            win.append((a, j, rm[a] + sizes[j] / 2, sizes[j], 1.0))
+    win = windows(rm, lv, sizes)
     reach = max(np.sqrt(2) * (w[2] + w[3]) for w in win)
     R = reach + range_fac * sg.max()
     nk = int(np.ceil(kmax_fac / sg.min() * R / np.pi))
