@@ -172,7 +172,11 @@ TEST(ExcludedModel, ConvergedInItsDiscretisation) {
   const std::vector<double> s = {4.0, 8.0, 20.0};
   const ModelParams p{3, 0.5, 0.2, Search::top_down};
   const double ref = evaluate_excluded_model(d, p, s).T_over_N;
-  for (const ExcludedOptions o : {ExcludedOptions{12, 15, 0.5}, ExcludedOptions{6, 30, 0.5}, ExcludedOptions{6, 15, 0.25}})
+  std::vector<ExcludedOptions> finer(3);
+  finer[0].bins_per_level = 12;
+  finer[1].k_max = 30;
+  finer[2].dk = 0.25;
+  for (const ExcludedOptions& o : finer)
     EXPECT_NEAR(evaluate_excluded_model(d, p, s, o).T_over_N / ref, 1.0, kDiscretisationRelTol)
         << o.bins_per_level << " " << o.k_max << " " << o.dk;
 }

@@ -136,7 +136,7 @@ nlohmann::json count_json(const Packing& p, const GridParams& g, const std::vect
   j["T_over_N"] = n > 0 ? c.cost(K) / n : 0.0;
   j["T_cd_over_N"] = n > 0 ? static_cast<double>(c.narrow_phase_checks) / n : 0.0;
   j["T_ca_over_N"] = n > 0 ? static_cast<double>(c.cell_accesses) / n : 0.0;
-  const PackingModels models = model_for_packing(p, used, g.search, K);
+  const PackingModels models = model_for_packing(p, used, g.search, K, true, true);
   j["model_T_over_N"] = models.random.T_over_N;
   j["model_T_cd_over_N"] = models.random.T_cd_over_N;
   j["model_T_ca_over_N"] = models.random.T_ca_over_N;

@@ -167,7 +167,7 @@ std::vector<double> disc_excess(const std::vector<Bin>& bins, const std::vector<
   g.nk = static_cast<int>(std::ceil(opt.k_max / smin * g.range / std::numbers::pi));
   std::optional<detail::PyNumeric> py;
   try {
-    py.emplace(2, rho, sigma, g);
+    py.emplace(2, rho, sigma, g, opt.on_iteration);
   } catch (const std::runtime_error&) {
     char v[32];
     std::snprintf(v, sizeof v, "%.4g", nu);

@@ -22,6 +22,10 @@ struct ExcludedOptions {
   int disc_bins_per_level = 4;  // 2D: size classes per level
   double disc_dr = 0.04;      // 2D: r step of the numerical Percus-Yevick solution, in units of 2 r_min
   double disc_range = 3.0;    // 2D: its transforms' range beyond the largest window reach, in largest diameters
+  /// 2D: called after each iteration of the numerical solution with the
+  /// fraction of the density being solved and the iterations so far (at
+  /// most 1000; seconds per iteration grow like omega^2).
+  std::function<void(double, int)> on_iteration;
 };
 
 /// A box with walls [0, A_1] x [0, A_2] x [0, A_3]: centres of radius r lie

@@ -3,11 +3,12 @@
 #include "grid/error.hpp"
 #include "model/distribution.hpp"
 #include "model/excluded.hpp"
+#include "packing/progress.hpp"
 
 namespace hgrid {
 
 PackingModels model_for_packing(const Packing& p, const std::vector<double>& sizes, Search search, double K,
-                                bool with_excluded) {
+                                bool with_excluded, bool progress) {
   if (p.size() == 0) throw InputError("packing", "no particles to model");
   const Empirical dist(p.radii);
   const ModelParams mp{p.d, p.packing_fraction(), K, search};
@@ -21,7 +22,12 @@ PackingModels model_for_packing(const Packing& p, const std::vector<double>& siz
     try {
       std::optional<WallBox> walls;
       if (p.boundary == Boundary::walls) walls = WallBox{{p.box[0], p.box[1], p.box[2]}};
-      out.excluded = evaluate_excluded_model(dist, mp, sizes, {}, walls);
+      Progress bar(progress && p.d == 2, "excluded-volume model (2D Percus-Yevick, ETA for at most 1000 iterations)");
+      ExcludedOptions opt;
+      opt.on_iteration = [&](double t, int it) {
+        bar.update(it / 1000.0, "density " + std::to_string(static_cast<int>(100 * t)) + " %, " + std::to_string(it) + " iterations");
+      };
+      out.excluded = evaluate_excluded_model(dist, mp, sizes, opt, walls);
     } catch (const InputError& e) {
       out.excluded_skipped = e.what();
     }

@@ -18,8 +18,9 @@ struct PackingModels {
 
 /// Both models for the packing's radii (an empirical distribution) and
 /// packing fraction, for the sizes used (e.g. HGrid::sizes()); with
-/// with_excluded = false only the paper's (the other is seconds at omega = 100).
+/// with_excluded = false only the paper's (the other is seconds at omega = 100
+/// in 3D, up to a minute or two in 2D); progress: report a long 2D solution on stderr.
 PackingModels model_for_packing(const Packing& p, const std::vector<double>& sizes, Search search, double K,
-                                bool with_excluded = true);
+                                bool with_excluded = true, bool progress = false);
 
 }  // namespace hgrid

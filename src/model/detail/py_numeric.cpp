@@ -93,8 +93,9 @@ std::vector<double> anderson_weights(const std::vector<std::vector<double>>& dF,
 }
 }  // namespace
 
-PyNumeric::PyNumeric(int d, std::vector<double> rho, std::vector<double> sigma, const PyNumericGrid& g)
-    : d_(d), rho_(std::move(rho)), sigma_(std::move(sigma)), g_(g) {
+PyNumeric::PyNumeric(int d, std::vector<double> rho, std::vector<double> sigma, const PyNumericGrid& g,
+                     const std::function<void(double, int)>& progress)
+    : d_(d), rho_(std::move(rho)), sigma_(std::move(sigma)), g_(g), progress_(progress) {
   const int M = size();
   if (M == 0 || sigma_.size() != rho_.size() || (d != 2 && d != 3)) throw std::invalid_argument("PyNumeric: arguments");
   if (!(g.dr > 0) || !(g.range > 0) || g.nk < 2) throw std::invalid_argument("PyNumeric: grid");
@@ -194,6 +195,7 @@ bool PyNumeric::iterate(std::vector<double>& x, double t, double tol) {
   for (int it = 1; iterations_ < g_.max_iterations; ++it) {
     ++iterations_;
     step(x, gx);
+    if (progress_) progress_(t, iterations_);
     double res = 0;
     for (std::size_t q = 0; q < total; ++q) {
       f[q] = gx[q] - x[q];

@@ -8,6 +8,7 @@
 // Discs have no closed-form Percus-Yevick solution; in 3D this solver is
 // checked against Baxter's (PyMixture). docs/MODEL.md section 8.
 #pragma once
+#include <functional>
 #include <vector>
 
 namespace hgrid::detail {
@@ -27,7 +28,9 @@ class PyNumeric {
   /// the packing fraction (unit-ball volume x sum rho_i (sigma_i / 2)^d) must
   /// be < 1. Solves at construction; throws std::runtime_error when the
   /// iteration does not converge.
-  PyNumeric(int d, std::vector<double> rho, std::vector<double> sigma, const PyNumericGrid& g);
+  /// progress(t, iterations): after each iteration, t the density fraction being solved.
+  PyNumeric(int d, std::vector<double> rho, std::vector<double> sigma, const PyNumericGrid& g,
+            const std::function<void(double, int)>& progress = {});
 
   int size() const { return static_cast<int>(rho_.size()); }
   int iterations() const { return iterations_; }
@@ -62,6 +65,7 @@ class PyNumeric {
   std::vector<std::vector<double>> fw_;        // per pair: forward weights (quadrature x measure)
   std::vector<std::vector<double>> gamma_;     // per pair, at convergence
   std::vector<std::vector<double>> G_;         // per pair: Gamma_ab(k_m)
+  std::function<void(double, int)> progress_;
   int iterations_ = 0;
   double scale_ = 1.0;                         // densities in use: scale_ x rho
 };
