@@ -233,8 +233,6 @@ TEST(ExcludedModel, DenseEdgesStayFinite) {
 TEST(ExcludedModel, RefusesWhatItCannotModel) {
   const PowerLaw d(-3, 10);
   EXPECT_THROW(evaluate_excluded_model(d, ModelParams{3, 1.0, 0.2, Search::top_down}, {20.0}), InputError);
-  EXPECT_THROW(evaluate_excluded_model(d, ModelParams{2, 0.5, 0.2, Search::top_down}, {20.0}, {}, WallBox{{100, 100, 0}}),
-               InputError);  // 2D: periodic only
   try {
     evaluate_excluded_model(PowerLaw(-3, 60), ModelParams{2, 0.3, 0.2, Search::top_down}, {120.0});
     ADD_FAILURE() << "2D, omega = 60 accepted";
@@ -263,6 +261,22 @@ TEST(ExcludedModel, WalledBoxesApproachTheBulk) {
     return std::abs(w.T_over_N / bulk.T_over_N - 1.0);
   };
   const double small = deviation(200.0), large = deviation(2000.0);
+  EXPECT_LT(large, kWallBulkRelTol * 5);
+  EXPECT_LT(large, small / 5);
+}
+
+TEST(ExcludedModel, WalledSquaresApproachTheBulk) {
+  // 2D: the wall layer's share of the square falls like 1/A.
+  const PowerLaw d(-3, 5);
+  const std::vector<double> s = {4.0, 10.0};
+  const ModelParams p{2, 0.4, 0.2, Search::top_down};
+  const ModelResult bulk = evaluate_excluded_model(d, p, s);
+  const auto deviation = [&](double A) {
+    const ModelResult w = evaluate_excluded_model(d, p, s, {}, WallBox{{A, A, 0.0}});
+    EXPECT_LT(w.T_ca_over_N, bulk.T_ca_over_N) << A;  // fewer cells near a wall
+    return std::abs(w.T_over_N / bulk.T_over_N - 1.0);
+  };
+  const double small = deviation(100.0), large = deviation(1000.0);
   EXPECT_LT(large, kWallBulkRelTol * 5);
   EXPECT_LT(large, small / 5);
 }

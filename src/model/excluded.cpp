@@ -33,11 +33,12 @@ struct Window {
 // Walls: each window's random-centre count and cell accesses in the walled
 // box (centres uniform in their accessible region, scans clipped), and the
 // bulk excess scaled by the ratio of walled to bulk random counts.
-void apply_walls(const WallBox& box, double density, const std::vector<Bin>& bins,
+void apply_walls(int d, const WallBox& box, double density, const std::vector<Bin>& bins,
                  const std::vector<detail::WallProfile>& prof, const std::vector<Window>& win,
                  const std::vector<double>& excess, const std::vector<double>& sizes, ModelResult& res) {
   const int L = static_cast<int>(sizes.size());
-  const double volume = box.extent[0] * box.extent[1] * box.extent[2];
+  double volume = 1.0;
+  for (int k = 0; k < d; ++k) volume *= box.extent[k];
   std::fill(res.T_cd_pair.begin(), res.T_cd_pair.end(), 0.0);
   std::fill(res.T_ca.begin(), res.T_ca.end(), 0.0);
   for (std::size_t w = 0; w < win.size(); ++w) {
@@ -50,34 +51,37 @@ void apply_walls(const WallBox& box, double density, const std::vector<Bin>& bin
     for (std::size_t q = 0; q < bins.size(); ++q)
       if (bins[q].level == wi.level_searched) searched.push_back(prof[q]), prob.push_back(bins[q].P), P_j += bins[q].P;
     std::array<detail::AxisScan, 3> ax;
-    for (int k = 0; k < 3; ++k) {
-      int same = 0;  // an earlier axis of the same length (a cubic box): the same scan
+    for (int k = 0; k < d; ++k) {
+      int same = 0;  // an earlier axis of the same length (a square or cubic box): the same scan
       while (same < k && box.extent[same] != box.extent[k]) ++same;
       ax[k] = same < k ? ax[same]
                        : detail::scan_axis(box.extent[k], prof[wi.bin], sizes[wi.level_searched], own,
                                            a.r_mean + 0.5 * sizes[wi.level_searched], searched);
     }
     double random = 0.0;  // expected level-j centres in the scan, per particle
-    for (std::size_t q = 0; q < searched.size(); ++q)
-      random += density * volume * prob[q] * ax[0].fraction[q] * ax[1].fraction[q] * ax[2].fraction[q];
-    const double bulk = density * P_j * std::pow(2.0 * wi.c + wi.s, 3);
+    for (std::size_t q = 0; q < searched.size(); ++q) {
+      double f = density * volume * prob[q];
+      for (int k = 0; k < d; ++k) f *= ax[k].fraction[q];
+      random += f;
+    }
+    const double bulk = density * P_j * std::pow(2.0 * wi.c + wi.s, d);
     const double scaled_excess = bulk > 0 ? excess[w] * random / bulk : 0.0;
     res.T_cd_pair[a.level * L + wi.level_searched] += wi.half * a.P * (random + scaled_excess);
-    double cells;
-    if (own) {  // own cell + the existing cells of the half stencil
+    double cells = 1.0;
+    if (own) {  // own cell + the existing cells of the half stencil (first non-zero offset positive)
       cells = 0.0;
-      for (int o0 = -1; o0 <= 1; ++o0)
-        for (int o1 = -1; o1 <= 1; ++o1)
-          for (int o2 = -1; o2 <= 1; ++o2) {
-            const int o[3] = {o0, o1, o2};
-            const int first = o0 != 0 ? o0 : (o1 != 0 ? o1 : o2);
-            if (first < 0) continue;
-            double pr = 1.0;
-            for (int k = 0; k < 3; ++k) pr *= o[k] < 0 ? ax[k].p_below : (o[k] > 0 ? ax[k].p_above : 1.0);
-            cells += pr;
-          }
+      const int count = d == 2 ? 9 : 27;
+      for (int m = 0; m < count; ++m) {
+        int o[3] = {m % 3 - 1, (m / 3) % 3 - 1, d == 3 ? m / 9 - 1 : 0};
+        int first = 0;
+        for (int k = 0; k < d && first == 0; ++k) first = o[k];
+        if (first < 0) continue;
+        double pr = 1.0;
+        for (int k = 0; k < d; ++k) pr *= o[k] < 0 ? ax[k].p_below : (o[k] > 0 ? ax[k].p_above : 1.0);
+        cells += pr;
+      }
     } else {
-      cells = ax[0].cells * ax[1].cells * ax[2].cells;
+      for (int k = 0; k < d; ++k) cells *= ax[k].cells;
     }
     res.T_ca[a.level] += a.P * cells;
   }
@@ -154,7 +158,7 @@ constexpr double kMaxDiscOmega = 50.0 * (1.0 + 1e-9);
 // c = -(1 + gamma) inside contact and 0 outside.
 std::vector<double> disc_excess(const std::vector<Bin>& bins, const std::vector<double>& rho,
                                 const std::vector<double>& sigma, const std::vector<Window>& win, double nu,
-                                const ExcludedOptions& opt) {
+                                const ExcludedOptions& opt, std::vector<detail::WallProfile>* prof) {
   const int B = static_cast<int>(bins.size());
   const double smin = *std::min_element(sigma.begin(), sigma.end());
   const double smax = *std::max_element(sigma.begin(), sigma.end());
@@ -162,12 +166,21 @@ std::vector<double> disc_excess(const std::vector<Bin>& bins, const std::vector<
   for (const Window& w : win) r_out = std::max(r_out, std::sqrt(2.0) * (w.c + w.s));
   detail::PyNumericGrid g;
   g.dr = opt.disc_dr * smin;
+  // Walls: one more component, a disc kWallDiameter times the largest (its
+  // radius on the r grid) at a negligible density, as in 3D.
+  std::vector<double> rho_all = rho, sigma_all = sigma;
+  const double wall_radius = g.dr * std::ceil(0.5 * kWallDiameter * smax / g.dr);
+  if (prof) {
+    rho_all.push_back(kWallPacking / (0.25 * std::numbers::pi * 4.0 * wall_radius * wall_radius));
+    sigma_all.push_back(2.0 * wall_radius);
+    r_out = std::max(r_out, wall_radius + kWallReach * smax);
+  }
   g.r_out = r_out + 2.0 * g.dr;  // covers ceil(reach / dr) + 1 points
   g.range = r_out + opt.disc_range * smax;
   g.nk = static_cast<int>(std::ceil(opt.k_max / smin * g.range / std::numbers::pi));
   std::optional<detail::PyNumeric> py;
   try {
-    py.emplace(2, rho, sigma, g, opt.on_iteration);
+    py.emplace(2, rho_all, sigma_all, g, opt.on_iteration);
   } catch (const std::runtime_error&) {
     char v[32];
     std::snprintf(v, sizeof v, "%.4g", nu);
@@ -182,7 +195,7 @@ std::vector<double> disc_excess(const std::vector<Bin>& bins, const std::vector<
     for (std::size_t w = 0; w < win.size(); ++w) {
       if (win[w].bin != a) continue;
       mine.push_back(w);
-      std::vector<double> wt(B, 0.0);
+      std::vector<double> wt(rho_all.size(), 0.0);
       for (int b = 0; b < B; ++b)
         if (bins[b].level == win[w].level_searched) wt[b] = rho[b];
       weight.push_back(std::move(wt));
@@ -216,6 +229,19 @@ std::vector<double> disc_excess(const std::vector<Bin>& bins, const std::vector<
       excess[mine[q]] = x;
     }
   }
+  if (prof) {  // h_Wb at z = 0, dr, ... from the wall's surface: gamma_Wb(wall_radius + z)
+    const auto n0 = static_cast<int>(std::lround(wall_radius / g.dr));
+    const auto nz = static_cast<int>(kWallReach * smax / g.dr);
+    std::vector<std::vector<double>> unit(B, std::vector<double>(rho_all.size(), 0.0));
+    for (int b = 0; b < B; ++b) unit[b][b] = 1.0;
+    const auto h = py->gamma_sums(B, unit, n0 + nz);
+    prof->assign(B, {});
+    for (int b = 0; b < B; ++b) {
+      (*prof)[b].radius = bins[b].r_mean;
+      (*prof)[b].dz = g.dr;
+      (*prof)[b].h.assign(h[b].begin() + n0, h[b].end());
+    }
+  }
   return excess;
 }
 // Level totals and T/N from the per-pair counts.
@@ -235,7 +261,6 @@ ModelResult evaluate_excluded_model(const Distribution& dist, const ModelParams&
                                     const std::vector<double>& sizes, const ExcludedOptions& opt,
                                     const std::optional<WallBox>& walls) {
   ModelResult res = evaluate_model(dist, p, sizes);  // validates; the random-centre counts
-  if (p.d == 2 && walls) throw InputError("boundary", "the 2D excluded-volume model is for periodic boxes only");
   if (p.d == 2 && dist.r_max() > kMaxDiscOmega * dist.r_min())
     throw InputError("omega", "size ratio too large for the 2D excluded-volume model (omega up to " +
                                   std::to_string(static_cast<int>(kMaxDiscOmega)) + ")");
@@ -288,9 +313,14 @@ ModelResult evaluate_excluded_model(const Distribution& dist, const ModelParams&
   }
   for (const Window& w : win) reach = std::max(reach, std::sqrt(3.0) * (w.c + w.s));
   if (d == 2) {
-    const std::vector<double> excess = disc_excess(bins, rho, sigma, win, p.nu, opt);
-    for (std::size_t w = 0; w < win.size(); ++w)
-      res.T_cd_pair[bins[win[w].bin].level * L + win[w].level_searched] += win[w].half * bins[win[w].bin].P * excess[w];
+    std::vector<detail::WallProfile> prof;
+    const std::vector<double> excess = disc_excess(bins, rho, sigma, win, p.nu, opt, walls ? &prof : nullptr);
+    if (walls) {
+      apply_walls(2, *walls, c, bins, prof, win, excess, sizes, res);
+    } else {
+      for (std::size_t w = 0; w < win.size(); ++w)
+        res.T_cd_pair[bins[win[w].bin].level * L + win[w].level_searched] += win[w].half * bins[win[w].bin].P * excess[w];
+    }
     return finish(res, p, L);
   }
   const detail::PyMixture py(rho, sigma);
@@ -334,7 +364,7 @@ ModelResult evaluate_excluded_model(const Distribution& dist, const ModelParams&
     for (std::size_t w = 0; w < win.size(); ++w)
       res.T_cd_pair[bins[win[w].bin].level * L + win[w].level_searched] += win[w].half * bins[win[w].bin].P * excess[w];
   } else {
-    apply_walls(*walls, c, bins, wall_profiles(rho, sigma, bins, opt), win, excess, sizes, res);
+    apply_walls(3, *walls, c, bins, wall_profiles(rho, sigma, bins, opt), win, excess, sizes, res);
   }
   return finish(res, p, L);
 }
