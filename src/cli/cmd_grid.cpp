@@ -55,7 +55,7 @@ void add_grid_options(CLI::App* sub, GridOptions& o) {
                   "time (this machine's predicted seconds of build + query; needs `hgrid calibrate`)")
       ->default_val("count");
   sub->add_flag("--excluded-sizes", o.request.excluded_model,
-                "with --cells optimal: refine the sizes under the excluded-volume model (hard-sphere packings; 2D: periodic, omega <= 50)");
+                "with --cells optimal: refine the sizes under the excluded-volume model (hard-sphere packings; 2D: omega <= 50)");
   add_threads_option(sub, o.threads);
   sub->add_flag("--decompose", o.decompose,
                 "under mpirun/srun: split the box into one brick per rank, each searched by its rank with the "

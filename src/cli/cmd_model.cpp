@@ -160,7 +160,7 @@ void register_model_commands(CLI::App& app) {
   sub->add_option("--radii", o->radii_file,
                   "use the radii of FILE instead (any particle file: docs/PARTICLE_FILES.md)");
   sub->add_option("--placement", o->placement,
-                  "random (the paper's model) | excluded (hard-sphere packing: Percus-Yevick pair structure; 2D: periodic, omega <= 50)")
+                  "random (the paper's model) | excluded (hard-sphere packing: Percus-Yevick pair structure; 2D: omega <= 50)")
       ->capture_default_str();
   sub->add_flag("--excluded-sizes", o->excluded_sizes,
                "with --placement excluded: refine the sizes to minimise the excluded-volume model (slow at omega >= 50)");

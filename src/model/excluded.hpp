@@ -46,8 +46,9 @@ inline constexpr int kMaxWaveNumbers = 1 << 17;
 /// the walled box (exact for uniform centres in the accessible region) and the
 /// Percus-Yevick excess is the bulk one scaled by the same ratio.
 /// In 2D (discs: no closed-form Percus-Yevick solution) h_ij comes from the
-/// numerical solution (detail::PyNumeric), periodic boxes only.
-/// Throws InputError for nu >= 1, for 2D walls, and past the supported omega.
+/// numerical solution (detail::PyNumeric), walls included.
+/// Throws InputError for nu >= 1, past the supported omega, and (2D) where the
+/// numerical solution does not converge (nu, named with the reachable range).
 ModelResult evaluate_excluded_model(const Distribution& dist, const ModelParams& p,
                                     const std::vector<double>& sizes, const ExcludedOptions& opt = {},
                                     const std::optional<WallBox>& walls = std::nullopt);
