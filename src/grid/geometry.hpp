@@ -1,5 +1,6 @@
 // Spheres, boxes and boundaries: the vocabulary shared by every search structure.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -37,6 +38,14 @@ inline double ball_volume(int d, double r) { return unit_ball_volume(d) * (d == 
 /// [0, side_k]; with periodic boundaries they are wrapped into [0, side_k).
 template <int D>
 using Extent = std::array<double, D>;
+
+/// Cells per axis of a level of cell size s in a box side A: with periodic
+/// boundaries an integer number of cells at least s wide tiles the side
+/// (fitted; at least one), with walls cells of side s cover it.
+inline double cells_per_axis(double A, double s, Boundary b) {
+  const double ratio = A / s;
+  return std::max(1.0, b == Boundary::periodic ? std::floor(ratio) : std::ceil(ratio));
+}
 
 namespace detail {
 

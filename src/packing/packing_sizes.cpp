@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 
 #include "model/cell_sizes.hpp"
 #include "model/distribution.hpp"
 #include "model/excluded.hpp"
 #include "packing/progress.hpp"
 #include "grid/error.hpp"
+#include "grid/geometry.hpp"
 
 namespace hgrid {
 
@@ -32,9 +32,9 @@ std::vector<double> model_sizes(const Packing& p, const SizeRequest& r, Search s
 
 std::vector<double> merge_fitted_levels(std::vector<double> sizes, const Packing& p) {
   if (p.boundary != Boundary::periodic) return sizes;
-  const auto cells = [&](double s) {
+  const auto cells = [&](double s) {  // the grid's layout of a level
     std::array<double, 3> n{};
-    for (int a = 0; a < p.d; ++a) n[static_cast<std::size_t>(a)] = std::max(1.0, std::floor(p.box[static_cast<std::size_t>(a)] / s));
+    for (std::size_t a = 0; a < static_cast<std::size_t>(p.d); ++a) n[a] = cells_per_axis(p.box[a], s, p.boundary);
     return n;
   };
   std::vector<double> out;

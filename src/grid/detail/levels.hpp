@@ -128,12 +128,11 @@ std::vector<Level<D>> make_levels(const std::vector<double>& sizes, const Extent
         throw InputError("sizes", "level " + std::to_string(h + 1) + " would have " + std::to_string(ratio) +
                                       " cells per axis (at most " + std::to_string(kMaxCellsPerAxis) +
                                       " allowed); use larger cells");
+      L.n[a] = static_cast<std::int64_t>(cells_per_axis(box[a], sizes[h], b));
       if (b == Boundary::periodic) {
-        L.n[a] = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::floor(ratio)));
         L.s[a] = box[a] / static_cast<double>(L.n[a]);
         if (L.n[a] < 3) L.small_periodic = true;
       } else {
-        L.n[a] = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(ratio)));
         L.s[a] = sizes[h];
       }
       L.s_min = std::min(L.s_min, L.s[a]);
