@@ -11,7 +11,7 @@
 #include "experiment/calibration.hpp"
 #include "model/cell_sizes.hpp"
 #include "model/excluded.hpp"
-#include "packing/progress.hpp"
+#include "packing/packing_model.hpp"
 #include "packing/generate.hpp"
 #include "packing/packing_sizes.hpp"
 #include "model/figures.hpp"
@@ -78,13 +78,7 @@ void run_model(const ModelOptions& o) {
   // The paper's model (random centres) chooses the sizes; with --placement
   // excluded the excluded-volume model is evaluated for the same sizes.
   if (o.excluded_sizes && !excluded) throw InputError("excluded-sizes", "needs --placement excluded");
-  Progress bar(excluded && p.d == 2, "excluded-volume model (2D Percus-Yevick, ETA for at most 1000 iterations)");
-  ExcludedOptions opt;
-  opt.on_iteration = [&](double t, int it) {
-    bar.update(it / 1000.0, "density " + std::to_string(static_cast<int>(100 * t)) + " %, " + std::to_string(it) + " iterations");
-  };
-  ModelResult m = excluded ? evaluate_excluded_model(*dist, p, choice.sizes, opt) : choice.model;
-  bar.finish();
+  ModelResult m = excluded ? evaluate_excluded_model_reported(*dist, p, choice.sizes) : choice.model;
   const double T_excluded_paper_sizes = m.T_over_N;
   int evaluations = 0;
   if (o.excluded_sizes) {  // refine the paper's sizes under the excluded-volume model

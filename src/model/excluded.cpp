@@ -166,6 +166,7 @@ std::vector<double> disc_excess(const std::vector<Bin>& bins, const std::vector<
   for (const Window& w : win) r_out = std::max(r_out, std::sqrt(2.0) * (w.c + w.s));
   detail::PyNumericGrid g;
   g.dr = opt.disc_dr * smin;
+  g.max_iterations = kMaxDiscIterations;
   // Walls: one more component, a disc kWallDiameter times the largest (its
   // radius on the r grid) at a negligible density, as in 3D.
   std::vector<double> rho_all = rho, sigma_all = sigma;

@@ -24,7 +24,7 @@ struct ExcludedOptions {
   double disc_range = 3.0;    // 2D: its transforms' range beyond the largest window reach, in largest diameters
   /// 2D: called after each iteration of the numerical solution with the
   /// fraction of the density being solved and the iterations so far (at
-  /// most 1000; seconds per iteration grow like omega^2).
+  /// most kMaxDiscIterations; seconds per iteration grow like omega^2).
   std::function<void(double, int)> on_iteration;
 };
 
@@ -33,6 +33,10 @@ struct ExcludedOptions {
 struct WallBox {
   std::array<double, 3> extent{};
 };
+
+/// Most iterations of the 2D numerical Percus-Yevick solution, over its
+/// density continuation; past them the model refuses (InputError naming nu).
+inline constexpr int kMaxDiscIterations = 1000;
 
 /// Largest number of wave numbers the model evaluates; beyond it (omega above
 /// a few thousand) it refuses with an InputError naming omega.

@@ -22,17 +22,25 @@ PackingModels model_for_packing(const Packing& p, const std::vector<double>& siz
     try {
       std::optional<WallBox> walls;
       if (p.boundary == Boundary::walls) walls = WallBox{{p.box[0], p.box[1], p.box[2]}};
-      Progress bar(progress && p.d == 2, "excluded-volume model (2D Percus-Yevick, ETA for at most 1000 iterations)");
-      ExcludedOptions opt;
-      opt.on_iteration = [&](double t, int it) {
-        bar.update(it / 1000.0, "density " + std::to_string(static_cast<int>(100 * t)) + " %, " + std::to_string(it) + " iterations");
-      };
-      out.excluded = evaluate_excluded_model(dist, mp, sizes, opt, walls);
+      out.excluded = evaluate_excluded_model_reported(dist, mp, sizes, walls, progress);
     } catch (const InputError& e) {
       out.excluded_skipped = e.what();
     }
   }
   return out;
+}
+
+ModelResult evaluate_excluded_model_reported(const Distribution& dist, const ModelParams& p,
+                                             const std::vector<double>& sizes, const std::optional<WallBox>& walls,
+                                             bool progress) {
+  Progress bar(progress && p.d == 2,
+               "excluded-volume model (2D Percus-Yevick, ETA for at most " + std::to_string(kMaxDiscIterations) + " iterations)");
+  ExcludedOptions opt;
+  opt.on_iteration = [&](double t, int it) {
+    bar.update(static_cast<double>(it) / kMaxDiscIterations,
+               "density " + std::to_string(static_cast<int>(100 * t)) + " %, " + std::to_string(it) + " iterations");
+  };
+  return evaluate_excluded_model(dist, p, sizes, opt, walls);
 }
 
 }  // namespace hgrid

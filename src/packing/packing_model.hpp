@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "model/distribution.hpp"
+#include "model/excluded.hpp"
 #include "model/model.hpp"
 #include "packing/packing.hpp"
 
@@ -22,5 +24,12 @@ struct PackingModels {
 /// in 3D, up to a minute or two in 2D); progress: report a long 2D solution on stderr.
 PackingModels model_for_packing(const Packing& p, const std::vector<double>& sizes, Search search, double K,
                                 bool with_excluded = true, bool progress = false);
+
+/// evaluate_excluded_model with, for discs (seconds to minutes), its
+/// iterations on stderr when `progress` (Progress: percentage of the
+/// iteration budget, ETA).
+ModelResult evaluate_excluded_model_reported(const Distribution& dist, const ModelParams& p,
+                                             const std::vector<double>& sizes,
+                                             const std::optional<WallBox>& walls = std::nullopt, bool progress = true);
 
 }  // namespace hgrid
