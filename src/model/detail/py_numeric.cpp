@@ -95,15 +95,15 @@ std::vector<double> anderson_weights(const std::vector<std::vector<double>>& dF,
 
 PyNumeric::PyNumeric(int d, std::vector<double> rho, std::vector<double> sigma, const PyNumericGrid& g,
                      const std::function<void(double, int)>& progress)
-    : d_(d), rho_(std::move(rho)), sigma_(std::move(sigma)), g_(g), progress_(progress) {
+    : rho_(std::move(rho)), g_(g), progress_(progress) {
   const int M = size();
-  if (M == 0 || sigma_.size() != rho_.size() || (d != 2 && d != 3)) throw std::invalid_argument("PyNumeric: arguments");
+  if (M == 0 || sigma.size() != rho_.size() || (d != 2 && d != 3)) throw std::invalid_argument("PyNumeric: arguments");
   if (!(g.dr > 0) || !(g.range > 0) || g.nk < 2) throw std::invalid_argument("PyNumeric: grid");
   double eta = 0;
-  for (int i = 0; i < M; ++i) eta += (d == 2 ? kPi / 4 : kPi / 6) * rho_[i] * std::pow(sigma_[i], d);
+  for (int i = 0; i < M; ++i) eta += (d == 2 ? kPi / 4 : kPi / 6) * rho_[i] * std::pow(sigma[i], d);
   if (!(eta < 1.0)) throw std::invalid_argument("PyNumeric: packing fraction >= 1");
 
-  k_.resize(g.nk);
+  std::vector<double> k(g.nk);
   kw_.resize(g.nk);
   // Wave numbers of the Fourier-Bessel (d = 2) or Fourier-sine (d = 3) series
   // on [0, range]: the inverse transform is exact for functions that vanish
@@ -112,11 +112,11 @@ PyNumeric::PyNumeric(int d, std::vector<double> rho, std::vector<double> sigma, 
   for (int m = 0; m < g.nk; ++m) {
     if (d == 2) {
       const double j = gsl_sf_bessel_zero_J0(m + 1), j1 = gsl_sf_bessel_J1(j);
-      k_[m] = j / R;
+      k[m] = j / R;
       kw_[m] = 1.0 / (kPi * R * R * j1 * j1);
     } else {
-      k_[m] = (m + 1) * kPi / R;
-      kw_[m] = k_[m] * k_[m] * (kPi / R) / (2.0 * kPi * kPi);
+      k[m] = (m + 1) * kPi / R;
+      kw_[m] = k[m] * k[m] * (kPi / R) / (2.0 * kPi * kPi);
     }
   }
   // Nodes of each pair: r = i dr (i = 0 .. n), then sigma_ab; trapezoid weights times the measure.
@@ -130,7 +130,7 @@ PyNumeric::PyNumeric(int d, std::vector<double> rho, std::vector<double> sigma, 
   for (int a = 0; a < M; ++a)
     for (int b = a; b < M; ++b) {
       const int p = pair(a, b);
-      const double s = 0.5 * (sigma_[a] + sigma_[b]);
+      const double s = 0.5 * (sigma[a] + sigma[b]);
       sig_ab[p] = s;
       const int n = static_cast<int>(std::floor(s / g.dr));
       n_max = std::max(n_max, n);
@@ -153,7 +153,7 @@ PyNumeric::PyNumeric(int d, std::vector<double> rho, std::vector<double> sigma, 
   for (std::size_t row = 0; row < rows; ++row) {
     const double r = row < static_cast<std::size_t>(uniform_rows_) ? row * g.dr : sig_ab[row - uniform_rows_];
     double* kr = &kernel_[row * g.nk];
-    for (int m = 0; m < g.nk; ++m) kr[m] = kernel(d, k_[m] * r);
+    for (int m = 0; m < g.nk; ++m) kr[m] = kernel(d, k[m] * r);
   }
 
   // Density continuation: the fixed point at a fraction t of the densities,
@@ -233,10 +233,13 @@ bool PyNumeric::iterate(std::vector<double>& x, double t, double tol) {
 void PyNumeric::fourier(const std::vector<double>& x) {
   const int M = size(), P = pairs(), nk = g_.nk;
   // C_ab(k) = sum_nodes w c(r) K(k r), c = -(1 + gamma) inside contact.
-  std::vector<std::vector<double>> C(P, std::vector<double>(nk, 0.0));
+  C_.resize(P);
+  G_.resize(P);
 #pragma omp parallel for schedule(dynamic)
   for (int p = 0; p < P; ++p) {
-    double* cp = C[p].data();
+    C_[p].assign(nk, 0.0);
+    G_[p].resize(nk);
+    double* cp = C_[p].data();
     const int n = nodes_[p];
     for (int i = 0; i < n; ++i) {
       const double c = -(1.0 + x[offset_[p] + i]) * fw_[p][i];
@@ -246,12 +249,11 @@ void PyNumeric::fourier(const std::vector<double>& x) {
     }
   }
   // Ornstein-Zernike per k: (I - C R) Gamma = C R C, R = diag(rho).
-  G_.assign(P, std::vector<double>(nk, 0.0));
   std::vector<double> A(M * M), B(M * M), Cm(M * M);
   std::vector<int> piv;
   for (int m = 0; m < nk; ++m) {
     for (int a = 0; a < M; ++a)
-      for (int b = 0; b < M; ++b) Cm[a * M + b] = C[pair(a, b)][m];
+      for (int b = 0; b < M; ++b) Cm[a * M + b] = C_[pair(a, b)][m];
     for (int a = 0; a < M; ++a)
       for (int b = 0; b < M; ++b) {
         A[a * M + b] = (a == b ? 1.0 : 0.0) - Cm[a * M + b] * scale_ * rho_[b];

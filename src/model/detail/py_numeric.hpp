@@ -54,17 +54,16 @@ class PyNumeric {
   void fourier(const std::vector<double>& x);  // fills G_ from gamma x
   bool iterate(std::vector<double>& x, double t, double tol);  // fixed point at densities t rho, from x
 
-  int d_;
-  std::vector<double> rho_, sigma_;
+  std::vector<double> rho_;
   PyNumericGrid g_;
-  std::vector<double> k_, kw_;                 // wave numbers, inverse-transform weights
+  std::vector<double> kw_;                     // inverse-transform weights of the wave numbers
   std::vector<double> kernel_;                 // K(k_m r) row-major: row (an r), then m
   int uniform_rows_ = 0;                       // rows 0 .. uniform_rows_ - 1: r = i dr; then one per pair: sigma_ab
   std::vector<std::size_t> offset_;            // per pair: start in the flat gamma vector
   std::vector<int> nodes_;                     // per pair: number of nodes (last = sigma_ab)
   std::vector<std::vector<double>> fw_;        // per pair: forward weights (quadrature x measure)
   std::vector<std::vector<double>> gamma_;     // per pair, at convergence
-  std::vector<std::vector<double>> G_;         // per pair: Gamma_ab(k_m)
+  std::vector<std::vector<double>> C_, G_;     // per pair: C_ab(k_m), Gamma_ab(k_m) (kept between iterations)
   std::function<void(double, int)> progress_;
   int iterations_ = 0;
   double scale_ = 1.0;                         // densities in use: scale_ x rho
