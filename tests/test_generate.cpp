@@ -211,6 +211,7 @@ TEST(Generate, EquilibrationKeepsRadiiNuAndZeroOverlap) {
     EXPECT_NEAR(after.packing_fraction() / 0.55, 1.0, kNuTol);
     EXPECT_EQ(assess_packing(after, nullptr).max_rel_overlap, 0.0);
     EXPECT_GT(after.num_attrs.at("equilibration_acceptance"), 0.0);
+    EXPECT_GT(after.num_attrs.at("equilibration_swap_acceptance"), 0.0);
   }
   auto s = spec(3, 100, 0.3, -3, 10, Placement::random);
   s.equilibrate = true;

@@ -316,6 +316,9 @@ TEST_F(Hostile, SmallerOnes) {
   // A denormal is a number.
   EXPECT_EQ(hgrid_run("count " + path("bom.csv") + " --sizes 4.9e-320,2").status, 2);  // refused as a size, not as text
   EXPECT_EQ(hgrid_run("count " + path("bom.csv") + " --sizes 4.9e-320,2").err.find("not a number"), std::string::npos);
+  // Monte Carlo sweeps: a range, and only with --equilibrate.
+  expect_refused("generate --n 10 --nu 0.1 --placement excluded --equilibrate --sweeps 0 --out " + path("x.h5"), "sweeps");
+  expect_refused("generate --n 10 --nu 0.1 --placement excluded --sweeps 5 --out " + path("x.h5"), "sweeps");
   // An unknown option is named as such, even with a required one missing.
   expect_refused("generate --bogus 3", "--bogus");
   // NaN where a number is needed.

@@ -20,6 +20,7 @@ struct GenerateOptions {
   PackingSpec spec;
   std::string boundary = "periodic", placement = "random", out, cache_dir;
   bool quiet = false;
+  bool sweeps_given = false;
 };
 
 void run_generate(GenerateOptions o) {
@@ -29,6 +30,7 @@ void run_generate(GenerateOptions o) {
   if (o.out.empty() == o.cache_dir.empty()) throw InputError("out", "give exactly one of --out FILE and --cache DIR");
   if (o.spec.equilibrate && o.spec.placement != Placement::excluded)
     throw InputError("equilibrate", "only applies to --placement excluded");
+  if (o.sweeps_given && !o.spec.equilibrate) throw InputError("sweeps", "only applies with --equilibrate");
   Packing p;
   std::string path = o.out;
   bool reused = false;  // --cache and the packing was there already
@@ -61,12 +63,18 @@ void register_generate_commands(CLI::App& app) {
   sub->add_option("--boundary", o->boundary, "periodic|walls")->default_val("periodic");
   sub->add_option("--placement", o->placement, "random (independent centres) | excluded (no overlaps)")
       ->default_val("random");
-  sub->add_flag("--equilibrate", o->spec.equilibrate, "excluded: hard-sphere equilibration after placement");
+  sub->add_flag("--equilibrate", o->spec.equilibrate,
+                "excluded: hard-sphere Monte Carlo after placement (displacements and swaps of two particles)");
+  auto* sweeps = sub->add_option("--sweeps", o->spec.sweeps, "with --equilibrate: Monte Carlo sweeps (N trials each), 1 to 100000")
+                     ->default_val(kDefaultEquilibrationSweeps);
   sub->add_option("--seed", o->spec.seed, "random seed")->default_val(1)->check(CLI::NonNegativeNumber);
   sub->add_option("--out", o->out, "output file (.h5)");
   sub->add_option("--cache", o->cache_dir, "instead of --out: reuse or create DIR/<hash>.h5 (path printed)");
   sub->add_flag("--quiet", o->quiet, "no progress lines");
-  sub->callback([o] { run_generate(*o); });
+  sub->callback([o, sweeps] {
+    o->sweeps_given = sweeps->count() > 0;
+    run_generate(*o);
+  });
   register_info_command(app);
 }
 

@@ -33,7 +33,7 @@ PackingSpec spec(int d, Placement placement, Boundary boundary, double alpha, do
 bool same_packing(const PackingSpec& a, const PackingSpec& b) {
   return a.d == b.d && a.n == b.n && a.nu == b.nu && a.dist == b.dist && a.alpha == b.alpha && a.omega == b.omega &&
          a.sigma == b.sigma && a.boundary == b.boundary && a.placement == b.placement && a.seed == b.seed &&
-         a.equilibrate == b.equilibrate;
+         a.equilibrate == b.equilibrate && a.sweeps == b.sweeps;
 }
 
 std::string utc_now() {

@@ -39,7 +39,8 @@ const char* const kNumberAttrs[] = {"seed", "n", "nu", "alpha", "omega", "sigma"
                                     "rcp_estimate", "nu_achieved", "max_rel_overlap", "mean_rel_overlap",
                                     "mean_contacts", "slab_max_dev", "ks_distance", "ks_pvalue", "fire_steps",
                                     "growth_start_nu", "growth_steps", "neighbour_list_builds",
-                                    "equilibration_acceptance", "equilibration_sweeps"};
+                                    "equilibration_acceptance", "equilibration_swap_acceptance",
+                                    "equilibration_sweeps"};
 
 /// Declared values of a dataset, checked against what the file stores and
 /// against the memory available, before anything is allocated.

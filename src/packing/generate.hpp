@@ -21,6 +21,10 @@ inline const char* to_string(Placement p) { return p == Placement::random ? "ran
 Placement parse_placement(const std::string& s, const std::string& field = "placement");
 
 /// Everything that determines a generated packing (and its cache key).
+/// Monte Carlo sweeps of an equilibration unless a spec says otherwise.
+inline constexpr int kDefaultEquilibrationSweeps = 20;
+inline constexpr int kMaxEquilibrationSweeps = 100000;
+
 struct PackingSpec {
   int d = 3;
   std::size_t n = 0;
@@ -32,6 +36,7 @@ struct PackingSpec {
   Placement placement = Placement::random;
   std::uint64_t seed = 1;
   bool equilibrate = false;  // excluded only: hard-sphere equilibration after placement
+  int sweeps = kDefaultEquilibrationSweeps;  // equilibrate: Monte Carlo sweeps (n trials each)
   bool progress = true;      // progress lines on stderr for long generations
 };
 
