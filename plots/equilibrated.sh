@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# Does the insertion order explain the excluded-volume model's misses? The
+# same 3D packings (seed 1, periodic unless said) as placed (largest-first
+# random sequential addition, growth + FIRE where it stalls) and after hard-sphere
+# Monte Carlo with swaps (`hgrid generate --equilibrate --sweeps S`), counted
+# with the paper model's optimal Top-Down sizes (K = 0.2). Per packing: T/N
+# measured and its error against the excluded-volume model, and level 1's
+# own-level checks (measured, excluded-volume model), where the omega = 10,
+# nu = 0.6 miss sits (docs/MODEL.md section 8, limits). Writes
+# results/equilibrated[-SCALE].csv and prints it as a Markdown table.
+# Usage: plots/equilibrated.sh [SCALE]   (default: 6 packings x 3 states, N = 10^5, ~5 min; smoke: 2 x 2 at 10^4)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scale=${1:-default}
+hgrid=${HGRID:-build/hgrid}
+if ! command -v jq >/dev/null 2>&1; then
+  echo "plots/equilibrated.sh: jq is not installed (optional: apt-get install jq); skipped" >&2
+  exit 0
+fi
+# alpha omega nu n boundary
+points_default="
+-3 10 0.6 100000 periodic
+-2 10 0.6 100000 periodic
+-3 10 0.4 100000 periodic
+-3 2 0.6 100000 periodic
+-3 50 0.6 100000 periodic
+-3 10 0.6 3000 walls"
+sweeps_default="0 20 200"
+points_smoke="
+-3 10 0.6 10000 periodic
+-3 10 0.6 3000 walls"
+sweeps_smoke="0 20"
+case "$scale" in
+  smoke) points=$points_smoke sweeps_list=$sweeps_smoke ;;
+  *) points=$points_default sweeps_list=$sweeps_default ;;
+esac
+suffix=$([ "$scale" = default ] && echo "" || echo "-$scale")
+mkdir -p results results/packings
+csv=results/equilibrated$suffix.csv
+tmp=$csv.tmp.$$
+trap 'rm -f "$tmp"' EXIT
+{
+  echo "# 3D excluded-volume packings, seed 1, as placed (sweeps = 0) and after hard-sphere Monte Carlo with swaps; hgrid count with optimal Top-Down sizes (K = 0.2)"
+  echo "# error_excluded = measured / excluded-volume model - 1 (T/N); level1_own_* = level 1's own-level narrow-phase checks"
+  echo "# git_hash=$(git rev-parse --short=12 HEAD 2>/dev/null || echo unknown) machine=$(grep -m1 'model name' /proc/cpuinfo 2>/dev/null | cut -d: -f2 | sed 's/^ //' || echo unknown)"
+  echo "boundary,alpha,omega,nu,n,sweeps,swap_acceptance,T_over_N,model_T_over_N,model_excluded_T_over_N,error_paper,error_excluded,level1_own_measured,level1_own_model_excluded"
+  while read -r alpha omega nu n boundary; do
+    [ -z "$alpha" ] && continue
+    for sweeps in $sweeps_list; do
+      echo "plots/equilibrated.sh: alpha=$alpha omega=$omega nu=$nu n=$n $boundary sweeps=$sweeps" >&2
+      eq=()
+      [ "$sweeps" -gt 0 ] && eq=(--equilibrate --sweeps "$sweeps")
+      f=$("$hgrid" generate --n "$n" --nu "$nu" --alpha "$alpha" --omega "$omega" --boundary "$boundary" \
+            --placement excluded "${eq[@]}" --seed 1 --cache results/packings --quiet | tail -1)
+      acc=$("$hgrid" info "$f" --json | jq '.attributes.equilibration_swap_acceptance // 0')
+      "$hgrid" count "$f" --cells optimal --threads 1 --json 2>/dev/null |
+        jq -r --arg a "$alpha" --arg w "$omega" --arg nu "$nu" --arg s "$sweeps" --arg acc "$acc" \
+          '[.boundary, $a, $w, $nu, .n, $s, $acc, .T_over_N, .model_T_over_N, .model_excluded_T_over_N,
+            (.T_over_N / .model_T_over_N - 1), (.T_over_N / .model_excluded_T_over_N - 1),
+            .per_level[0].narrow_phase_checks_by_level_searched[0],
+            .per_level[0].model_excluded_narrow_phase_checks_by_level_searched[0]] | @csv' | tr -d '"'
+    done
+  done <<< "$points"
+} > "$tmp"
+mv "$tmp" "$csv"
+echo "| boundary | alpha | omega | nu | N | MC sweeps | swap acceptance | measured T/N | excluded-volume model | level 1 own checks, measured / model |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
+grep -v '^#' "$csv" | tail -n +2 | awk -F, '{printf "| %s | %s | %s | %s | %s | %s | %.2f | %.3f | %+.2f %% | %.3f |\n", $1, $2, $3, $4, $5, $6, $7, $8, 100 * $12, $13 / $14}'
