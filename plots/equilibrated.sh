@@ -8,7 +8,8 @@
 # own-level checks (measured, excluded-volume model), where the omega = 10,
 # nu = 0.6 miss sits (docs/MODEL.md section 8, limits). Writes
 # results/equilibrated[-SCALE].csv and prints it as a Markdown table.
-# Usage: plots/equilibrated.sh [SCALE]   (default: 6 packings x 3 states, N = 10^5, ~5 min; smoke: 2 x 2 at 10^4)
+# Usage: plots/equilibrated.sh [SCALE]   (default: 6 packings x 3 states, N = 10^5, ~5 min; long: up to 30 000
+#        sweeps at N = 3000-30 000, ~12 min; smoke: 2 x 2 at 10^4)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scale=${1:-default}
@@ -17,22 +18,26 @@ if ! command -v jq >/dev/null 2>&1; then
   echo "plots/equilibrated.sh: jq is not installed (optional: apt-get install jq); skipped" >&2
   exit 0
 fi
-# alpha omega nu n boundary
+# alpha omega nu n boundary sweeps (comma-separated; 0 = as placed)
 points_default="
--3 10 0.6 100000 periodic
--2 10 0.6 100000 periodic
--3 10 0.4 100000 periodic
--3 2 0.6 100000 periodic
--3 50 0.6 100000 periodic
--3 10 0.6 3000 walls"
-sweeps_default="0 20 200"
+-3 10 0.6 100000 periodic 0,20,200
+-2 10 0.6 100000 periodic 0,20,200
+-3 10 0.4 100000 periodic 0,20,200
+-3 2 0.6 100000 periodic 0,20,200
+-3 50 0.6 100000 periodic 0,20,200
+-3 10 0.6 3000 walls 0,20,200"
+points_long="
+-3 10 0.4 30000 periodic 0,2000,6000
+-3 10 0.6 30000 periodic 0,2000,10000
+-2 10 0.6 30000 periodic 0,10000
+-3 10 0.6 3000 walls 0,2000,10000,30000"
 points_smoke="
--3 10 0.6 10000 periodic
--3 10 0.6 3000 walls"
-sweeps_smoke="0 20"
+-3 10 0.6 10000 periodic 0,20
+-3 10 0.6 3000 walls 0,20"
 case "$scale" in
-  smoke) points=$points_smoke sweeps_list=$sweeps_smoke ;;
-  *) points=$points_default sweeps_list=$sweeps_default ;;
+  smoke) points=$points_smoke ;;
+  long) points=$points_long ;;
+  *) points=$points_default ;;
 esac
 suffix=$([ "$scale" = default ] && echo "" || echo "-$scale")
 mkdir -p results results/packings
@@ -44,14 +49,14 @@ trap 'rm -f "$tmp"' EXIT
   echo "# error_excluded = measured / excluded-volume model - 1 (T/N); level1_own_* = level 1's own-level narrow-phase checks"
   echo "# git_hash=$(git rev-parse --short=12 HEAD 2>/dev/null || echo unknown) machine=$(grep -m1 'model name' /proc/cpuinfo 2>/dev/null | cut -d: -f2 | sed 's/^ //' || echo unknown)"
   echo "boundary,alpha,omega,nu,n,sweeps,swap_acceptance,T_over_N,model_T_over_N,model_excluded_T_over_N,error_paper,error_excluded,level1_own_measured,level1_own_model_excluded"
-  while read -r alpha omega nu n boundary; do
+  while read -r alpha omega nu n boundary sweeps_list; do
     [ -z "$alpha" ] && continue
-    for sweeps in $sweeps_list; do
+    for sweeps in ${sweeps_list//,/ }; do
       echo "plots/equilibrated.sh: alpha=$alpha omega=$omega nu=$nu n=$n $boundary sweeps=$sweeps" >&2
       eq=()
       [ "$sweeps" -gt 0 ] && eq=(--equilibrate --sweeps "$sweeps")
       f=$("$hgrid" generate --n "$n" --nu "$nu" --alpha "$alpha" --omega "$omega" --boundary "$boundary" \
-            --placement excluded "${eq[@]}" --seed 1 --cache results/packings --quiet | tail -1)
+            --placement excluded ${eq[@]+"${eq[@]}"} --seed 1 --cache results/packings --quiet | tail -1)
       acc=$("$hgrid" info "$f" --json | jq '.attributes.equilibration_swap_acceptance // 0')
       "$hgrid" count "$f" --cells optimal --threads 1 --json 2>/dev/null |
         jq -r --arg a "$alpha" --arg w "$omega" --arg nu "$nu" --arg s "$sweeps" --arg acc "$acc" \
