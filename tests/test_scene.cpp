@@ -81,6 +81,18 @@ TEST(Scene, RejectsBadInput) {
   expect_error_naming("name = \"t\"\n[packings\nn = 1\n", "scene");
   expect_error_naming("[packings]\nn = 1\nnu = 0.1\n", "name");
   expect_error_naming("name = \"a/b\"\n[packings]\nn = 1\nnu = 0.1\n", "name");
+  const std::string excluded = "name = \"t\"\n[packings]\nn = 10\nnu = 0.1\nplacement = \"excluded\"\n";
+  expect_error_naming(excluded + "sweeps = 5\n", "packings.sweeps");
+  expect_error_naming(excluded + "equilibrate = true\nsweeps = 0\n", "packings.sweeps");
+  expect_error_naming(excluded + "equilibrate = true\nsweeps = 2.5\n", "packings.sweeps");
+}
+
+TEST(Scene, EquilibrationSweepsReachThePackings) {
+  const std::string excluded = "name = \"t\"\n[packings]\nn = 10\nnu = 0.1\nplacement = \"excluded\"\nequilibrate = true\n";
+  EXPECT_EQ(load_scene(write_scene("eq", excluded), "default").points.at(0).packing.sweeps, kDefaultEquilibrationSweeps);
+  const Scene s = load_scene(write_scene("eq", excluded + "sweeps = 300\n"), "default");
+  EXPECT_TRUE(s.points.at(0).packing.equilibrate);
+  EXPECT_EQ(s.points.at(0).packing.sweeps, 300);
 }
 
 TEST(Scene, KindSelectsTheRunner) {

@@ -22,13 +22,15 @@ using detail::numbers;
 using detail::strings;
 
 const detail::SceneSections kSections = {
-    {"packings", {"d", "n", "nu", "alpha", "omega", "sigma", "dist", "boundary", "placement", "seeds", "equilibrate"}}};
+    {"packings", {"d", "n", "nu", "alpha", "omega", "sigma", "dist", "boundary", "placement", "seeds", "equilibrate", "sweeps"}}};
 
 /// The packing lists of a scene, before expansion.
 struct PackingLists {
   std::vector<double> d{3}, n, nu, alpha{-3}, omega{100}, sigma{0.5}, seeds{1};
   std::vector<std::string> dist{"powerlaw"}, boundary{"periodic"}, placement{"random"};
   bool equilibrate = false;
+  std::int64_t sweeps = kDefaultEquilibrationSweeps;
+  bool sweeps_given = false;
 };
 
 void read_packings(const toml::table& t, PackingLists& p, const std::string& where) {
@@ -50,12 +52,19 @@ void read_packings(const toml::table& t, PackingLists& p, const std::string& whe
       auto b = v.value<bool>();
       if (!b) throw InputError(name, "must be true or false");
       p.equilibrate = *b;
+    } else if (key == "sweeps") {
+      auto i = v.value<std::int64_t>();
+      if (!i || *i < 1 || *i > kMaxEquilibrationSweeps)
+        throw InputError(name, "must be an integer in [1, " + std::to_string(kMaxEquilibrationSweeps) + "]");
+      p.sweeps = *i;
+      p.sweeps_given = true;
     }
   }
 }
 
 void check_lists(const PackingLists& p) {
   if (p.n.empty()) throw InputError("packings.n", "is required (number of particles, >= 1)");
+  if (p.sweeps_given && !p.equilibrate) throw InputError("packings.sweeps", "only applies with equilibrate = true");
   if (p.nu.empty()) throw InputError("packings.nu", "is required (packing fraction, > 0)");
   for (double d : p.d)
     if (d != 2 && d != 3) throw InputError("packings.d", "must be 2 or 3");
@@ -192,6 +201,7 @@ Scene load_scene_text(const std::string& text, const std::string& scale, const s
                         p.placement = parse_placement(plc);
                         p.seed = static_cast<std::uint64_t>(seed);
                         p.equilibrate = lists.equilibrate;
+                        p.sweeps = static_cast<int>(lists.sweeps);
                         pt.search = search;
                         s.points.push_back(pt);
                       }

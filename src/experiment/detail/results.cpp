@@ -44,6 +44,7 @@ nlohmann::json detail::result_to_json(const PointResult& r) {
           {"placement", to_string(s.placement)},
           {"seed", s.seed},
           {"equilibrate", s.equilibrate},
+          {"sweeps", s.sweeps},
           {"search", to_string(r.point.search)},
           {"levels", c.levels},
           {"sizes", r.sizes},
@@ -124,6 +125,13 @@ PointResult detail::result_from_json(const nlohmann::json& j) {
   s.seed = count_of(j, "seed");
   if (!field(j, "equilibrate").is_boolean()) throw InputError("equilibrate", "must be true or false");
   s.equilibrate = field(j, "equilibrate").get<bool>();
+  // Journals written before the Monte Carlo sweeps were a parameter have none.
+  if (j.contains("sweeps")) {
+    const auto sweeps = count_of(j, "sweeps");
+    if (sweeps < 1 || sweeps > static_cast<std::uint64_t>(kMaxEquilibrationSweeps))
+      throw InputError("sweeps", "must be in [1, " + std::to_string(kMaxEquilibrationSweeps) + "]");
+    s.sweeps = static_cast<int>(sweeps);
+  }
   r.point.search = parse_search(text_of(j, "search"));
   r.n = count_of(j, "n");
   r.nu_achieved = finite_of(j, "nu_achieved");
