@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Tables of both models' errors at every excluded-volume point of Figs. 11
 # and 12: measured T/N, and measured / predicted - 1 for the paper's model
-# (random centres) and the excluded-volume model. Reads results/fig11[-S].csv
-# and fig12[-S].csv; writes paper_figs/model-errors[-S].md.
+# (random centres) and the excluded-volume model. Reads results/fig11[-S].csv,
+# fig12[-S].csv and, if there, fig12_equilibrated[-S].csv; writes
+# paper_figs/model-errors[-S].md.
 # Usage: plots/model_errors.sh [SCALE]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -35,6 +36,10 @@ table() {  # CSV TITLE: one row per excluded-volume point
   echo
   table "results/fig11$suffix.csv" "Figure 11 (T/N against nu)"
   table "results/fig12$suffix.csv" "Figure 12 (T/N against N)"
+  if [ -f "results/fig12_equilibrated$suffix.csv" ]; then
+    table "results/fig12_equilibrated$suffix.csv" \
+      "Figure 12, N <= 3·10^4, packings equilibrated (10^4 sweeps of Monte Carlo with swaps; \`hgrid run experiments/fig12_equilibrated.toml\`, not part of make figures)"
+  fi
 } > "$tmp"
 mv -f "$tmp" "$out"
 echo "wrote $out" >&2
