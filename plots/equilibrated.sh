@@ -9,7 +9,7 @@
 # nu = 0.6 miss sits (docs/MODEL.md section 8, limits). Writes
 # results/equilibrated[-SCALE].csv and prints it as a Markdown table.
 # Usage: plots/equilibrated.sh [SCALE]   (default: 6 packings x 3 states, N = 10^5, ~5 min; long: up to 30 000
-#        sweeps at N = 3000-10^5, ~30 min; smoke: 2 x 2 at 10^4)
+#        sweeps at N = 3000-10^5, ~45 min; smoke: 2 x 2 at 10^4)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scale=${1:-default}
@@ -28,6 +28,7 @@ points_default="
 -3 10 0.6 3000 walls 0,20,200"
 points_long="
 -3 10 0.6 100000 periodic 0,200,10000
+-2 10 0.6 100000 periodic 0,10000
 -3 10 0.4 30000 periodic 0,2000,6000
 -3 10 0.6 30000 periodic 0,2000,10000
 -2 10 0.6 30000 periodic 0,10000
