@@ -6,7 +6,8 @@ Rogers-Young (ry, f(r) = 1 - exp(-a r)) closure, against a measured count.
 
 Written separately from the C++: uniform r grid, radial transforms as sine
 transforms by FFT, Anderson mixing, density continuation; 2 classes per
-level by default. With the PY closure it reproduces the C++ model's per-level
+level by default. The size classes and the scan windows are those of
+excluded_pins.py (imported from this directory). With the PY closure it reproduces the C++ model's per-level
 excess to ~1-2 % of the excess (alpha = -3, omega = 10, nu = 0.4). Not run
 by CI; run by hand (needs python3-numpy; ~30 s per solution at omega = 10):
 
@@ -23,33 +24,8 @@ import time
 
 import numpy as np
 
+from excluded_pins import moment, shell_area, size_classes, windows  # same directory
 
-def moment(i, lo, hi, alpha, rmax):
-    def prim(x, p): return np.log(x) if abs(p + 1) < 1e-14 else x ** (p + 1) / (p + 1)
-    C = 1 / (prim(rmax, alpha) - prim(1.0, alpha))
-    return C * (prim(hi, alpha + i) - prim(lo, alpha + i))
-
-def size_classes(alpha, omega, sizes, B):
-    P, rm, sg, lv = [], [], [], []
-    lo = 1.0
-    for h in range(len(sizes)):
-        hi = min(sizes[h] / 2, omega)
-        if hi > lo:
-            e = lo * (hi / lo) ** (np.arange(B + 1) / B); e[-1] = hi
-            for q in range(B):
-                p = moment(0, e[q], e[q + 1], alpha, omega)
-                P.append(p); rm.append(moment(1, e[q], e[q + 1], alpha, omega) / p)
-                sg.append(2 * (moment(3, e[q], e[q + 1], alpha, omega) / p) ** (1 / 3)); lv.append(h)
-            lo = hi
-    return map(np.array, (P, rm, sg, lv))
-
-M = 400
-_i = np.arange(M) + 0.5
-_ph = np.arccos(1 - 2 * _i / M); _th = np.pi * (1 + 5 ** 0.5) * _i
-DIRS = np.stack([np.cos(_th) * np.sin(_ph), np.sin(_th) * np.sin(_ph), np.cos(_ph)], 1)
-def shell_area(rho, c, s):
-    w = np.prod(np.clip((c + s - np.abs(rho[:, None, None] * DIRS[None, :, :])) / s, 0, 1), axis=2).mean(1)
-    return 4 * np.pi * rho ** 2 * w
 
 def dst(x):  # DST-I along last axis of x[..., 1..N-1] given as length N array with x[...,0] ignored
     N = x.shape[-1]
@@ -93,19 +69,17 @@ def solve(rho, sg, closure, aRY, N, dr, tol=1e-5, itmax=3000, mix=0.5, verbose=F
         c = closure_c(gam)
         C = ft(c)
         Cm = np.zeros((N, n, n)); Cm[:, iu[0], iu[1]] = C.T; Cm[:, iu[1], iu[0]] = C.T
-        Cp = Cm * (t * sq)[None, :, None] * (t * sq)[None, None, :]  # t scales rho: sqrt(t rho) each side -> t
-        # careful: density scale t multiplies rho, so sqrt(rho_t) = sqrt(t) sq
-        Cp = Cm * (np.sqrt(t) * sq)[None, :, None] * (np.sqrt(t) * sq)[None, None, :]
-        I = np.eye(n)[None]
-        Hp = np.linalg.solve(I - Cp, Cp)
-        Gp = Hp - Cp
-        G = Gp / ((np.sqrt(t) * sq)[None, :, None] * (np.sqrt(t) * sq)[None, None, :])
-        return ift(G[:, iu[0], iu[1]].T), c
+        st = np.sqrt(t) * sq  # densities scaled by t: sqrt(t rho) on each side
+        scale = st[None, :, None] * st[None, None, :]
+        Cp = Cm * scale
+        Hp = np.linalg.solve(np.eye(n)[None] - Cp, Cp)
+        G = (Hp - Cp) / scale
+        return ift(G[:, iu[0], iu[1]].T)
     its = 0
     for t in (0.25, 0.5, 0.75, 1.0):
         X, F = [], []
         for it in range(itmax):
-            new, c = oz(gam, t)
+            new = oz(gam, t)
             f = (new - gam).ravel()
             d = np.max(np.abs(f))
             x = gam.ravel()
@@ -131,20 +105,15 @@ def solve(rho, sg, closure, aRY, N, dr, tol=1e-5, itmax=3000, mix=0.5, verbose=F
 
 def level_excess(alpha, omega, nu, sizes, B, closure, aRY, N, dr, verbose=False):
     c0 = nu / (4 / 3 * np.pi * moment(3, 1.0, omega, alpha, omega))
-    P, rm, sg, lv = size_classes(alpha, omega, sizes, B)
+    P, rm, sg, lv = size_classes(alpha, omega, sizes, B, 3)
     rho = c0 * P
     t0 = time.time()
     r, H, its = solve(rho, sg, closure, aRY, N, dr, verbose=verbose)
     L = len(sizes)
     ex = np.zeros((L, L))
-    for a in range(len(rho)):
-        h = lv[a]
-        for j in range(h + 1):
-            if j == h: cc, s, half = sizes[h], sizes[h], 0.5
-            else: cc, s, half = rm[a] + sizes[j] / 2, sizes[j], 1.0
-            A = shell_area(r, cc, s)
-            bs = lv == j
-            ex[h, j] += half * P[a] * np.sum(A * (rho[bs] @ H[a, bs])) * dr
+    for a, j, cc, s, half in windows(rm, lv, sizes):
+        bs = lv == j
+        ex[lv[a], j] += half * P[a] * np.sum(shell_area(r, cc, s) * (rho[bs] @ H[a, bs])) * dr
     return ex, its, time.time() - t0
 
 if __name__ == "__main__":
