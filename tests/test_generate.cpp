@@ -2,6 +2,7 @@
 // reproducibility, the cache, rcp estimates and rejected arguments.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -216,6 +217,52 @@ TEST(Generate, EquilibrationKeepsRadiiNuAndZeroOverlap) {
   auto s = spec(3, 100, 0.3, -3, 10, Placement::random);
   s.equilibrate = true;
   EXPECT_THROW(generate_packing(s), InputError);
+}
+
+// The checkerboard Monte Carlo runs a colour's domains at once, each on its
+// own random stream: the packing must not depend on the number of threads
+// (8 oversubscribes this 2-core machine), also when the box holds only two
+// domains per axis (the fewest excluded-volume placement allows).
+TEST(Generate, EquilibrationIsTheSameForAnyThreadCount) {
+  struct Case {
+    int d;
+    std::size_t n;
+    double nu, omega;
+    Boundary b;
+  };
+  for (const Case c : {Case{3, 4000, 0.5, 10, Boundary::periodic}, Case{3, 3000, 0.5, 10, Boundary::walls},
+                       Case{2, 3000, 0.6, 5, Boundary::periodic}, Case{2, 2000, 0.6, 5, Boundary::walls},
+                       Case{3, 300, 0.3, 10, Boundary::periodic}, Case{3, 60, 0.3, 4, Boundary::walls}}) {
+    SCOPED_TRACE("d " + std::to_string(c.d) + " n " + std::to_string(c.n) + " " + to_string(c.b) + " seed " +
+                 std::to_string(kSeed));
+    auto s = spec(c.d, c.n, c.nu, -3, c.omega, Placement::excluded, c.b);
+    s.equilibrate = true;
+    s.sweeps = 30;
+    s.threads = 1;
+    const Packing one = generate_packing(s);
+    EXPECT_EQ(assess_packing(one, nullptr).max_rel_overlap, 0.0);
+    for (const int t : {2, 3, 8}) {
+      s.threads = t;
+      const Packing many = generate_packing(s);
+      EXPECT_EQ(one.positions, many.positions) << t << " threads";
+      EXPECT_EQ(one.num_attrs.at("equilibration_acceptance"), many.num_attrs.at("equilibration_acceptance"));
+    }
+  }
+}
+
+// A move that would leave its domain is rejected, but the domains shift
+// every sweep: particles must still travel further than a domain is wide.
+TEST(Generate, EquilibrationCrossesDomains) {
+  auto s = spec(3, 1000, 0.05, -3, 1, Placement::excluded, Boundary::walls);
+  const Packing before = generate_packing(s);
+  s.equilibrate = true;
+  s.sweeps = 500;
+  const Packing after = generate_packing(s);
+  double furthest = 0;  // per axis (all radii are 1)
+  for (std::size_t i = 0; i < after.positions.size(); ++i)
+    furthest = std::max(furthest, std::abs(after.positions[i] - before.positions[i]));
+  const double width = after.box[0] / std::floor(after.box[0] / 2);  // domains: one diameter or a little more
+  EXPECT_GT(furthest, width);
 }
 
 /// The estimate's exact limits hold to this (the infinite ratio is 1e12).

@@ -6,6 +6,7 @@
 
 #include "cli/common.hpp"
 #include "grid/error.hpp"
+#include "grid/threads.hpp"
 #include "packing/generate.hpp"
 #include "io/packing_file.hpp"
 #include "experiment/packing_cache.hpp"
@@ -67,6 +68,10 @@ void register_generate_commands(CLI::App& app) {
                 "excluded: hard-sphere Monte Carlo after placement (displacements and swaps of two particles)");
   auto* sweeps = sub->add_option("--sweeps", o->spec.sweeps, "with --equilibrate: Monte Carlo sweeps (N trials each), 1 to 100000")
                      ->default_val(kDefaultEquilibrationSweeps);
+  sub->add_option("--threads", o->spec.threads,
+                  "with --equilibrate: threads of the Monte Carlo, 0 = all cores (OMP_NUM_THREADS when set), or 1 to " +
+                      std::to_string(kMaxThreads) + "; the packing is the same for any number")
+      ->default_val(0);
   sub->add_option("--seed", o->spec.seed, "random seed")->default_val(1)->check(CLI::NonNegativeNumber);
   sub->add_option("--out", o->out, "output file (.h5)");
   sub->add_option("--cache", o->cache_dir, "instead of --out: reuse or create DIR/<hash>.h5 (path printed)");

@@ -17,6 +17,7 @@
 #include "grid/dispatch.hpp"
 #include "model/distribution.hpp"
 #include "grid/hgrid.hpp"
+#include "grid/threads.hpp"
 #include "model/model.hpp"
 #include "packing/packing_model.hpp"
 #include "packing/packing_sizes.hpp"
@@ -35,7 +36,10 @@ PointResult run_point(const Scene& scene, const ScenePoint& point, const RunOpti
   PointResult r;
   r.point = point;
   auto t0 = Clock::now();
-  const Packing p = cached_packing(point.packing, opt.packing_dir);
+  // An equilibration shares the cores with the other jobs.
+  PackingSpec spec = point.packing;
+  spec.threads = std::max(1, resolve_threads(0) / std::max(1, opt.jobs));
+  const Packing p = cached_packing(spec, opt.packing_dir);
   r.seconds_packing = since(t0);
   r.n = p.size();
   r.nu_achieved = p.packing_fraction();

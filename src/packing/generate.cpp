@@ -9,6 +9,7 @@
 #include <numeric>
 #include <string>
 
+#include "grid/threads.hpp"
 #include "packing/detail/gen_common.hpp"
 #include "packing/detail/gen_equilibrate.hpp"
 #include "packing/detail/gen_relax.hpp"
@@ -41,6 +42,7 @@ void check_spec(const PackingSpec& s) {
   if (!(std::isfinite(s.nu) && s.nu > 0 && s.nu < 1)) throw InputError("nu", "must be in (0, 1) (got " + brief(s.nu) + ")");
   if (s.equilibrate && s.placement != Placement::excluded)
     throw InputError("equilibrate", "only applies to excluded-volume placement");
+  check_threads(s.threads);
   if (s.sweeps < 1 || s.sweeps > kMaxEquilibrationSweeps)
     throw InputError("sweeps", "must be in [1, " + std::to_string(kMaxEquilibrationSweeps) + "] (got " +
                                    std::to_string(s.sweeps) + ")");
@@ -186,7 +188,7 @@ Packing generate_packing(const PackingSpec& s) {
   else place_excluded(s, rcp, rng, p);
   if (s.equilibrate) {
     Progress progress(s.progress, "hard-sphere Monte Carlo equilibration");
-    const auto e = detail::equilibrate(s.d, s.boundary, p.box, p.radii, p.positions, s.sweeps, rng, progress);
+    const auto e = detail::equilibrate(s.d, s.boundary, p.box, p.radii, p.positions, s.sweeps, s.threads, rng, progress);
     p.num_attrs["equilibration_acceptance"] = e.displacement_acceptance;
     p.num_attrs["equilibration_swap_acceptance"] = e.swap_acceptance;
     p.num_attrs["equilibration_sweeps"] = s.sweeps;
@@ -248,7 +250,7 @@ std::string packing_key(const PackingSpec& s) {
                   " n=" + std::to_string(s.n) + " nu=" + format_number(s.nu) + " dist=" + s.dist;
   k += s.dist == "lognormal" ? " sigma=" + format_number(s.sigma) : " alpha=" + format_number(s.alpha);
   k += " omega=" + format_number(s.omega) + " boundary=" + to_string(s.boundary) + " placement=" + to_string(s.placement) +
-       " seed=" + std::to_string(s.seed) + " equilibrate=" + (s.equilibrate ? "1 swaps sweeps=" + std::to_string(s.sweeps) : "0");
+       " seed=" + std::to_string(s.seed) + " equilibrate=" + (s.equilibrate ? "1 checkerboard sweeps=" + std::to_string(s.sweeps) : "0");
   return k;
 }
 

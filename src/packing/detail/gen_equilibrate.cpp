@@ -1,12 +1,33 @@
 #include "packing/detail/gen_equilibrate.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
+#include "grid/threads.hpp"
 #include "packing/detail/gen_insert_grid.hpp"
 
 namespace hgrid::detail {
 namespace {
+
+/// A domain's random stream: SplitMix64 (Steele, Lea & Flood, OOPSLA 2014),
+/// cheap to seed, so every domain of every sweep gets its own.
+class DomainRng {
+ public:
+  DomainRng(std::uint64_t sweep_seed, std::uint64_t domain) : s_(sweep_seed ^ (domain * 0xd1b54a32d192ed03ull)) {
+    bits();
+  }
+  std::uint64_t bits() {
+    std::uint64_t z = (s_ += 0x9e3779b97f4a7c15ull);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+  }
+  double uniform() { return static_cast<double>(bits() >> 11) * 0x1.0p-53; }
+
+ private:
+  std::uint64_t s_;
+};
 
 template <int D, Boundary B>
 bool inside(const std::array<double, D>& x, double r, const Extent<D>& box) {
@@ -16,78 +37,193 @@ bool inside(const std::array<double, D>& x, double r, const Extent<D>& box) {
   return true;
 }
 
-/// Particles i and j exchange positions if neither then overlaps anything
-/// (the two cannot overlap each other: their distance and radius sum stay).
+struct Tally {
+  std::uint64_t accepted = 0, proposed = 0, swapped = 0, swaps = 0;
+};
+
 template <int D, Boundary B>
-bool try_swap(InsertGrid<D, B>& grid, const std::vector<double>& radii, const Extent<D>& box, std::uint32_t i,
-              std::uint32_t j) {
-  const std::array<double, D> xi = grid.position(i), xj = grid.position(j);
-  if (!inside<D, B>(xj, radii[i], box) || !inside<D, B>(xi, radii[j], box)) return false;
-  grid.erase(i);
-  grid.erase(j);
-  const bool ok = !grid.overlaps(xj, radii[i], 0) && !grid.overlaps(xi, radii[j], 0);
-  grid.insert(i, ok ? xj : xi, radii[i]);
-  grid.insert(j, ok ? xi : xj, radii[j]);
-  return ok;
-}
+class Checkerboard {
+ public:
+  Checkerboard(const Extent<D>& box, const std::vector<double>& radii, std::vector<double>& pos)
+      : box_(box), radii_(radii), pos_(pos), grid_(box, radii, width(box, radii), domains(box, radii)) {
+    const auto nd = domains(box, radii);
+    width_ = width(box, radii);
+    std::size_t total = 1;
+    for (int k = 0; k < D; ++k) total *= static_cast<std::size_t>(nd[k]);
+    start_.assign(total + 1, 0);
+    members_.assign(radii.size(), 0);
+    for (std::size_t c = 0; c < total; ++c) {
+      std::size_t rest = c;
+      unsigned colour = 0;
+      for (int k = 0; k < D; ++k) {
+        colour |= static_cast<unsigned>(rest % static_cast<std::size_t>(nd[k]) % 2) << k;
+        rest /= static_cast<std::size_t>(nd[k]);
+      }
+      by_colour_[colour].push_back(static_cast<std::uint32_t>(c));
+    }
+  }
+
+  /// One sweep: new origin, then the colours in turn.
+  Tally sweep(GenRng& rng, int threads) {
+    Extent<D> origin;
+    for (int k = 0; k < D; ++k) {
+      const double u = rng.uniform() * width_[k];
+      origin[k] = B == Boundary::periodic ? u : u - width_[k];
+    }
+    const std::uint64_t seed = rng.bits();
+    grid_.reset(origin);
+    const std::size_t n = radii_.size();
+    std::vector<std::size_t>& dom = dom_;
+    dom.resize(n);
+    std::fill(start_.begin(), start_.end(), 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      std::array<double, D> x;
+      for (int k = 0; k < D; ++k) x[k] = pos_[i * D + k];
+      grid_.insert(static_cast<std::uint32_t>(i), x, radii_[i]);
+      dom[i] = grid_.domain_of(x, radii_[i]);
+      ++start_[dom[i] + 1];
+    }
+    for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+    std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) members_[fill[dom[i]]++] = static_cast<std::uint32_t>(i);
+    // The tallies are integer sums: the same in any order.
+    std::uint64_t accepted = 0, proposed = 0, swapped = 0, swaps = 0;
+    for (const auto& list : by_colour_) {
+      const auto m_end = static_cast<std::int64_t>(list.size());
+#if defined(_OPENMP)
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) reduction(+ : accepted, proposed, swapped, swaps) if (threads > 1)
+#endif
+      for (std::int64_t m = 0; m < m_end; ++m) {
+        const Tally d = run_domain(list[static_cast<std::size_t>(m)], seed);
+        accepted += d.accepted;
+        proposed += d.proposed;
+        swapped += d.swapped;
+        swaps += d.swaps;
+      }
+    }
+    (void)threads;
+    for (std::size_t i = 0; i < n; ++i)
+      for (int k = 0; k < D; ++k) pos_[i * D + k] = grid_.position(static_cast<std::uint32_t>(i))[k];
+    return Tally{accepted, proposed, swapped, swaps};
+  }
+
+ private:
+  static Extent<D> width(const Extent<D>& box, const std::vector<double>& radii) {
+    const auto nd = fitting(box, radii);
+    Extent<D> w;
+    for (int k = 0; k < D; ++k) w[k] = box[k] / static_cast<double>(nd[k]);
+    return w;
+  }
+  /// Domains of at least (1 + margin) largest diameters that tile the box;
+  /// periodic: an even number when more than 2 (the colours alternate
+  /// across the wrap).
+  static std::array<std::int64_t, D> fitting(const Extent<D>& box, const std::vector<double>& radii) {
+    const double dmax = 2 * *std::max_element(radii.begin(), radii.end()) * (1 + kDomainMargin);
+    std::array<std::int64_t, D> nd;
+    for (int k = 0; k < D; ++k) {
+      nd[k] = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::floor(box[k] / dmax)));
+      if (B == Boundary::periodic && nd[k] > 2 && nd[k] % 2) --nd[k];
+    }
+    return nd;
+  }
+  /// Domains of the grid: with walls one more per axis (the shifted grid
+  /// covers the box from origin - width).
+  static std::array<std::int64_t, D> domains(const Extent<D>& box, const std::vector<double>& radii) {
+    auto nd = fitting(box, radii);
+    if constexpr (B == Boundary::walls)
+      for (auto& v : nd) ++v;
+    return nd;
+  }
+
+  /// Particles i and j (both of domain c) exchange positions if neither then
+  /// overlaps anything nor leaves c (the two cannot overlap each other).
+  bool try_swap(std::uint32_t i, std::uint32_t j, std::size_t c) {
+    const std::array<double, D> xi = grid_.position(i), xj = grid_.position(j);
+    const double ri = radii_[i], rj = radii_[j];
+    if (!inside<D, B>(xj, ri, box_) || !inside<D, B>(xi, rj, box_)) return false;
+    if (grid_.domain_of(xj, ri) != c || grid_.domain_of(xi, rj) != c) return false;
+    grid_.erase(i);
+    grid_.erase(j);
+    const bool ok = !grid_.overlaps(xj, ri, 0) && !grid_.overlaps(xi, rj, 0);
+    grid_.insert(i, ok ? xj : xi, ri);
+    grid_.insert(j, ok ? xi : xj, rj);
+    return ok;
+  }
+
+  Tally run_domain(std::uint32_t c, std::uint64_t seed) {
+    Tally t;
+    const std::uint32_t* ids = members_.data() + start_[c];
+    const std::uint64_t count = start_[c + 1] - start_[c];
+    if (count == 0) return t;
+    DomainRng rng(seed, c);
+    for (std::uint64_t m = 0; m < count; ++m) {
+      const std::uint32_t i = ids[rng.bits() % count];
+      if (rng.uniform() < kSwapFraction) {
+        const std::uint32_t j = ids[rng.bits() % count];
+        ++t.swaps;
+        if (j != i && try_swap(i, j, c)) ++t.swapped;
+        continue;
+      }
+      const double r = radii_[i];
+      std::array<double, D> x = grid_.position(i);
+      for (int k = 0; k < D; ++k) {
+        x[k] += (2 * rng.uniform() - 1) * kMcStep * r;
+        if constexpr (B == Boundary::periodic) x[k] = wrap(x[k], box_[k]);
+      }
+      ++t.proposed;
+      if (!inside<D, B>(x, r, box_) || grid_.domain_of(x, r) != c || grid_.overlaps(x, r, 0, i)) continue;
+      grid_.erase(i);
+      grid_.insert(i, x, r);
+      ++t.accepted;
+    }
+    return t;
+  }
+
+  Extent<D> box_;
+  const std::vector<double>& radii_;
+  std::vector<double>& pos_;
+  InsertGrid<D, B> grid_;
+  Extent<D> width_;
+  std::array<std::vector<std::uint32_t>, (1u << D)> by_colour_;
+  std::vector<std::size_t> start_, dom_;
+  std::vector<std::uint32_t> members_;
+};
 
 template <int D, Boundary B>
 Equilibration run(const std::array<double, 3>& box3, const std::vector<double>& radii, std::vector<double>& pos,
-                  int sweeps, GenRng& rng, Progress& progress) {
+                  int sweeps, int threads, GenRng& rng, Progress& progress) {
   Extent<D> box;
   for (int k = 0; k < D; ++k) box[k] = box3[k];
-  const std::size_t n = radii.size();
-  InsertGrid<D, B> grid(box, radii);
-  for (std::size_t i = 0; i < n; ++i) {
-    std::array<double, D> x;
-    for (int k = 0; k < D; ++k) x[k] = pos[i * D + k];
-    grid.insert(static_cast<std::uint32_t>(i), x, radii[i]);
-  }
-  std::uint64_t accepted = 0, proposed = 0, swapped = 0, swaps = 0;
+  Checkerboard<D, B> board(box, radii, pos);
+  const int T = resolve_threads(threads);
+  Tally sum;
   for (int sweep = 0; sweep < sweeps; ++sweep) {
-    for (std::size_t m = 0; m < n; ++m) {
-      const auto i = static_cast<std::uint32_t>(rng.bits() % n);
-      if (rng.uniform() < kSwapFraction) {
-        const auto j = static_cast<std::uint32_t>(rng.bits() % n);
-        ++swaps;
-        if (j != i && try_swap<D, B>(grid, radii, box, i, j)) ++swapped;
-        continue;
-      }
-      const double r = radii[i];
-      std::array<double, D> x = grid.position(i);
-      for (int k = 0; k < D; ++k) {
-        x[k] += (2 * rng.uniform() - 1) * kMcStep * r;
-        if constexpr (B == Boundary::periodic) x[k] = wrap(x[k], box[k]);
-      }
-      ++proposed;
-      if (!inside<D, B>(x, r, box) || grid.overlaps(x, r, 0, i)) continue;
-      grid.erase(i);
-      grid.insert(i, x, r);
-      ++accepted;
-    }
+    const Tally t = board.sweep(rng, T);
+    sum.accepted += t.accepted;
+    sum.proposed += t.proposed;
+    sum.swapped += t.swapped;
+    sum.swaps += t.swaps;
     char buf[64];
     std::snprintf(buf, sizeof buf, "sweep %d, acceptance %.2f (moves), %.2f (swaps)", sweep + 1,
-                  static_cast<double>(accepted) / static_cast<double>(std::max<std::uint64_t>(proposed, 1)),
-                  static_cast<double>(swapped) / static_cast<double>(std::max<std::uint64_t>(swaps, 1)));
+                  static_cast<double>(sum.accepted) / static_cast<double>(std::max<std::uint64_t>(sum.proposed, 1)),
+                  static_cast<double>(sum.swapped) / static_cast<double>(std::max<std::uint64_t>(sum.swaps, 1)));
     progress.update(static_cast<double>(sweep + 1) / sweeps, buf);
   }
-  for (std::size_t i = 0; i < n; ++i)
-    for (int k = 0; k < D; ++k) pos[i * D + k] = grid.position(static_cast<std::uint32_t>(i))[k];
   Equilibration e;
-  if (proposed) e.displacement_acceptance = static_cast<double>(accepted) / static_cast<double>(proposed);
-  if (swaps) e.swap_acceptance = static_cast<double>(swapped) / static_cast<double>(swaps);
+  if (sum.proposed) e.displacement_acceptance = static_cast<double>(sum.accepted) / static_cast<double>(sum.proposed);
+  if (sum.swaps) e.swap_acceptance = static_cast<double>(sum.swapped) / static_cast<double>(sum.swaps);
   return e;
 }
 
 }  // namespace
 
 Equilibration equilibrate(int d, Boundary b, const std::array<double, 3>& box, const std::vector<double>& radii,
-                          std::vector<double>& pos, int sweeps, GenRng& rng, Progress& progress) {
+                          std::vector<double>& pos, int sweeps, int threads, GenRng& rng, Progress& progress) {
   if (d == 2)
-    return b == Boundary::walls ? run<2, Boundary::walls>(box, radii, pos, sweeps, rng, progress)
-                                : run<2, Boundary::periodic>(box, radii, pos, sweeps, rng, progress);
-  return b == Boundary::walls ? run<3, Boundary::walls>(box, radii, pos, sweeps, rng, progress)
-                              : run<3, Boundary::periodic>(box, radii, pos, sweeps, rng, progress);
+    return b == Boundary::walls ? run<2, Boundary::walls>(box, radii, pos, sweeps, threads, rng, progress)
+                                : run<2, Boundary::periodic>(box, radii, pos, sweeps, threads, rng, progress);
+  return b == Boundary::walls ? run<3, Boundary::walls>(box, radii, pos, sweeps, threads, rng, progress)
+                              : run<3, Boundary::periodic>(box, radii, pos, sweeps, threads, rng, progress);
 }
 
 }  // namespace hgrid::detail

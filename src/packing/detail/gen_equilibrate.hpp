@@ -6,14 +6,26 @@
 // same equilibrium ensemble (every non-overlapping configuration equally
 // likely); Monte Carlo needs no event calendar, whose collision prediction
 // is awkward with omega = 100 (a big sphere meets thousands of small ones),
-// and reuses the insertion grid. One sweep makes n trials. A trial is, with
-// probability kSwapFraction, a swap: two particles drawn uniformly exchange
+// and reuses the insertion grid.
+//
+// Trials: with probability kSwapFraction a swap, two particles exchanging
 // their positions (Grigera & Parisi, Phys. Rev. E 63 (2001) 045102; the
 // proposal is symmetric, so hard-core rejection alone keeps detailed
-// balance). Otherwise it is a uniform displacement of at most kMcStep r_i per
-// axis of a random particle. Either is accepted if it creates no overlap (nor
-// wall contact). Swaps move a small particle from one hole between big ones
-// to another, which displacements at nu = 0.6 cannot.
+// balance); otherwise a uniform displacement of at most kMcStep r_i per axis.
+// Either is accepted if it creates no overlap (nor wall contact). Swaps move
+// a small particle from one hole between big ones to another, which
+// displacements at nu = 0.6 cannot.
+//
+// On all cores, by checkerboard domains (Anderson, Jankowski, Grubb, Engel &
+// Glotzer, J. Comput. Phys. 254 (2013) 27): each sweep shifts a grid of
+// domains, each at least a largest diameter wide, by a random origin; the
+// 2^d colours of the domains (parity per axis) take turns, and the domains
+// of one colour run at once: each makes as many trials as it holds
+// particles, drawn among its own, swaps pair two of its own, and a move that
+// would leave it is rejected. A sphere centred in a domain reaches no sphere
+// of another domain of its colour, so a colour's domains are independent.
+// Each draws from its own stream, seeded by (sweep, domain): the packing is
+// the same for any number of threads.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -34,7 +46,13 @@ struct Equilibration {
   double swap_acceptance = 0;          // accepted / proposed swaps
 };
 
+/// Domains are at least (1 + kDomainMargin) largest diameters wide, so that
+/// rounding cannot make a search reach a domain two away.
+inline constexpr double kDomainMargin = 1e-6;
+
+/// `threads` as in grid/threads.hpp (0 = all cores); the result does not
+/// depend on it.
 Equilibration equilibrate(int d, Boundary b, const std::array<double, 3>& box, const std::vector<double>& radii,
-                          std::vector<double>& pos, int sweeps, GenRng& rng, Progress& progress);
+                          std::vector<double>& pos, int sweeps, int threads, GenRng& rng, Progress& progress);
 
 }  // namespace hgrid::detail

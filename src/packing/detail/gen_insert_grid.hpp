@@ -3,6 +3,11 @@
 // cell -> head table and one next-pointer list per cell. Answers "does this
 // candidate sphere overlap any stored sphere at level >= l?" (largest-first
 // insertion only needs the levels at or above the candidate's own).
+//
+// A second layout serves the checkerboard Monte Carlo (gen_equilibrate.cpp):
+// the box is cut into domains at least one largest diameter wide, shifted by
+// an origin, and every level's cells nest in the domains, so a domain's
+// lists are written only by moves of its own particles.
 #pragma once
 #include <algorithm>
 #include <array>
@@ -54,18 +59,53 @@ class InsertGrid {
     rad_.assign(radii.size(), 0.0);
   }
 
+  /// The domain layout: `domains[k]` domains of width `width[k]` per axis
+  /// (with walls one more than fit the box: the origin shifts them), each
+  /// level with a whole number of cells per domain (at most the cells the
+  /// first layout allows). Cells start at the origin given to reset().
+  InsertGrid(const Extent<D>& box, const std::vector<double>& radii, const Extent<D>& width,
+             const std::array<std::int64_t, D>& domains)
+      : InsertGrid(box, radii) {
+    for (Level& lv : levels_) {
+      std::size_t cells = 1;
+      for (int k = 0; k < D; ++k) {
+        const double by_size = lv.rmax > 0 ? std::floor(width[k] / (2 * lv.rmax)) : 1.0;
+        const double by_count = std::floor(static_cast<double>(lv.n[k]) * width[k] / box[k]);
+        lv.m[k] = static_cast<std::int64_t>(std::max(1.0, std::min(by_size, by_count)));
+        lv.n[k] = domains[k] * lv.m[k];
+        lv.s[k] = width[k] / static_cast<double>(lv.m[k]);
+        cells *= static_cast<std::size_t>(lv.n[k]);
+      }
+      lv.head.assign(cells, kEmpty);
+    }
+  }
+
+  /// Empties the grid and moves the cells' origin to `origin` (periodic: in
+  /// [0, cell); walls: at or below 0, the cells covering the box).
+  void reset(const Extent<D>& origin) {
+    for (Level& lv : levels_) {
+      lv.o = origin;
+      std::fill(lv.head.begin(), lv.head.end(), kEmpty);
+    }
+  }
+
+  /// The domain (per-axis index, linearised) of a sphere of radius r at x:
+  /// the domain of its cell at its own level.
+  std::size_t domain_of(const std::array<double, D>& x, double r) const {
+    const Level& lv = levels_[level_of(r)];
+    std::size_t c = 0;
+    for (int k = D - 1; k >= 0; --k)
+      c = c * static_cast<std::size_t>(lv.n[k] / lv.m[k]) + static_cast<std::size_t>(coord(lv, x[k], k) / lv.m[k]);
+    return c;
+  }
+
   int levels() const { return static_cast<int>(levels_.size()); }
   int level_of(double r) const { return std::min(levels() - 1, level_of_raw(r)); }
 
   /// Stores sphere `id` (ids 0..n-1, each once).
   void insert(std::uint32_t id, const std::array<double, D>& x, double r) {
     Level& lv = levels_[level_of(r)];
-    std::size_t c = 0;
-    for (int k = D - 1; k >= 0; --k) {
-      std::int64_t i = static_cast<std::int64_t>(std::floor(x[k] / lv.s[k]));
-      i = std::clamp<std::int64_t>(i, 0, lv.n[k] - 1);
-      c = c * static_cast<std::size_t>(lv.n[k]) + static_cast<std::size_t>(i);
-    }
+    const std::size_t c = cell_of(lv, x);
     pos_[id] = x;
     rad_[id] = r;
     next_[id] = lv.head[c];
@@ -83,12 +123,7 @@ class InsertGrid {
   /// Removes sphere id (it must be stored): an O(cell occupancy) unlink.
   void erase(std::uint32_t id) {
     Level& lv = levels_[level_of(rad_[id])];
-    std::size_t c = 0;
-    for (int k = D - 1; k >= 0; --k) {
-      std::int64_t i = static_cast<std::int64_t>(std::floor(pos_[id][k] / lv.s[k]));
-      i = std::clamp<std::int64_t>(i, 0, lv.n[k] - 1);
-      c = c * static_cast<std::size_t>(lv.n[k]) + static_cast<std::size_t>(i);
-    }
+    const std::size_t c = cell_of(lv, pos_[id]);
     std::uint32_t* link = &lv.head[c];
     while (*link != id) link = &next_[*link];
     *link = next_[id];
@@ -99,10 +134,29 @@ class InsertGrid {
  private:
   struct Level {
     std::array<std::int64_t, D> n{};
+    std::array<std::int64_t, D> m{};  // domain layout: cells per domain (else unused)
     std::array<double, D> s{};
+    std::array<double, D> o{};        // where cell 0 starts
     double rmax = 0;
     std::vector<std::uint32_t> head;
   };
+
+  /// Cell index along axis k of coordinate x (x in the box): x - o is at
+  /// least -s (periodic: that cell is the last one, wrapped), and rounding
+  /// can put it one past the last cell.
+  static std::int64_t coord(const Level& lv, double x, int k) {
+    std::int64_t i = static_cast<std::int64_t>(std::floor((x - lv.o[k]) / lv.s[k]));
+    if constexpr (B == Boundary::periodic)
+      if (i < 0) i += lv.n[k];
+    return std::clamp<std::int64_t>(i, 0, lv.n[k] - 1);
+  }
+
+  static std::size_t cell_of(const Level& lv, const std::array<double, D>& x) {
+    std::size_t c = 0;
+    for (int k = D - 1; k >= 0; --k)
+      c = c * static_cast<std::size_t>(lv.n[k]) + static_cast<std::size_t>(coord(lv, x[k], k));
+    return c;
+  }
 
   int level_of_raw(double r) const {
     const double t = std::log2(r / r0_);
@@ -114,8 +168,8 @@ class InsertGrid {
     const double beta = r + lv.rmax;
     std::array<std::int64_t, D> lo, cnt;
     for (int k = 0; k < D; ++k) {
-      lo[k] = static_cast<std::int64_t>(std::floor((x[k] - beta) / lv.s[k]));
-      std::int64_t hi = static_cast<std::int64_t>(std::floor((x[k] + beta) / lv.s[k]));
+      lo[k] = static_cast<std::int64_t>(std::floor((x[k] - beta - lv.o[k]) / lv.s[k]));
+      std::int64_t hi = static_cast<std::int64_t>(std::floor((x[k] + beta - lv.o[k]) / lv.s[k]));
       if constexpr (B == Boundary::walls) {
         lo[k] = std::max<std::int64_t>(lo[k], 0);
         hi = std::min<std::int64_t>(hi, lv.n[k] - 1);
