@@ -2,14 +2,14 @@
 # Does the insertion order explain the excluded-volume model's misses? The
 # same 3D packings (seed 1, periodic unless said) as placed (largest-first
 # random sequential addition, growth + FIRE where it stalls) and after hard-sphere
-# Monte Carlo with swaps (`hgrid generate --equilibrate --sweeps S`), counted
+# Monte Carlo with swaps on all cores (`hgrid generate --equilibrate --sweeps S`), counted
 # with the paper model's optimal Top-Down sizes (K = 0.2). Per packing: T/N
 # measured and its error against the excluded-volume model, and level 1's
 # own-level checks (measured, excluded-volume model), where the omega = 10,
 # nu = 0.6 miss sits (docs/MODEL.md section 8, limits). Writes
 # results/equilibrated[-SCALE].csv and prints it as a Markdown table.
-# Usage: plots/equilibrated.sh [SCALE]   (default: 6 packings x 3 states, N = 10^5, ~5 min; long: up to 30 000
-#        sweeps at N = 3000-10^5, ~45 min; smoke: 2 x 2 at 10^4)
+# Usage: plots/equilibrated.sh [SCALE]   (default: 6 packings x 3 states, N = 10^5, ~4 min; long: up to 10^5
+#        sweeps at N = 3000-10^5, ~35 min on 2 cores; smoke: 2 x 2 at 10^4)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scale=${1:-default}
@@ -27,12 +27,14 @@ points_default="
 -3 50 0.6 100000 periodic 0,20,200
 -3 10 0.6 3000 walls 0,20,200"
 points_long="
+-3 10 0.6 3000 walls 0,2000,10000,30000,100000
+-3 50 0.6 30000 periodic 0,10000
+-3 100 0.6 30000 periodic 0,10000
 -3 10 0.6 100000 periodic 0,200,10000
 -2 10 0.6 100000 periodic 0,10000
 -3 10 0.4 30000 periodic 0,2000,6000
 -3 10 0.6 30000 periodic 0,2000,10000
--2 10 0.6 30000 periodic 0,10000
--3 10 0.6 3000 walls 0,2000,10000,30000"
+-2 10 0.6 30000 periodic 0,10000"
 points_smoke="
 -3 10 0.6 10000 periodic 0,20
 -3 10 0.6 3000 walls 0,20"
