@@ -48,6 +48,7 @@ class Checkerboard {
       : box_(box), radii_(radii), pos_(pos), grid_(box, radii, width(box, radii), domains(box, radii)) {
     const auto nd = domains(box, radii);
     width_ = width(box, radii);
+    fitting_ = fitting(box, radii);
     std::size_t total = 1;
     for (int k = 0; k < D; ++k) total *= static_cast<std::size_t>(nd[k]);
     start_.assign(total + 1, 0);
@@ -68,7 +69,8 @@ class Checkerboard {
     Extent<D> origin;
     for (int k = 0; k < D; ++k) {
       const double u = rng.uniform() * width_[k];
-      origin[k] = B == Boundary::periodic ? u : u - width_[k];
+      if constexpr (B == Boundary::periodic) origin[k] = fitting_[k] == 1 ? 0.0 : u;  // one domain: nothing to shift
+      else origin[k] = u - width_[k];
     }
     const std::uint64_t seed = rng.bits();
     grid_.reset(origin);
@@ -184,6 +186,7 @@ class Checkerboard {
   std::vector<double>& pos_;
   InsertGrid<D, B> grid_;
   Extent<D> width_;
+  std::array<std::int64_t, D> fitting_;
   std::array<std::vector<std::uint32_t>, (1u << D)> by_colour_;
   std::vector<std::size_t> start_, dom_;
   std::vector<std::uint32_t> members_;

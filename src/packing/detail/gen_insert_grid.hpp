@@ -81,7 +81,8 @@ class InsertGrid {
   }
 
   /// Empties the grid and moves the cells' origin to `origin` (periodic: in
-  /// [0, cell); walls: at or below 0, the cells covering the box).
+  /// [0, domain width), and 0 on an axis with one domain, so that a scan
+  /// wraps at most once; walls: in [-width, 0), the cells covering the box).
   void reset(const Extent<D>& origin) {
     for (Level& lv : levels_) {
       lv.o = origin;
@@ -141,9 +142,9 @@ class InsertGrid {
     std::vector<std::uint32_t> head;
   };
 
-  /// Cell index along axis k of coordinate x (x in the box): x - o is at
-  /// least -s (periodic: that cell is the last one, wrapped), and rounding
-  /// can put it one past the last cell.
+  /// Cell index along axis k of coordinate x (x in the box): periodic, x - o
+  /// is at least minus one domain (those cells are the last ones, wrapped);
+  /// rounding can put it one past the last cell.
   static std::int64_t coord(const Level& lv, double x, int k) {
     std::int64_t i = static_cast<std::int64_t>(std::floor((x - lv.o[k]) / lv.s[k]));
     if constexpr (B == Boundary::periodic)
