@@ -319,6 +319,8 @@ TEST_F(Hostile, SmallerOnes) {
   // Monte Carlo sweeps: a range, and only with --equilibrate.
   expect_refused("generate --n 10 --nu 0.1 --placement excluded --equilibrate --sweeps 0 --out " + path("x.h5"), "sweeps");
   expect_refused("generate --n 10 --nu 0.1 --placement excluded --sweeps 5 --out " + path("x.h5"), "sweeps");
+  expect_refused("generate --n 10 --nu 0.1 --placement excluded --equilibrate --threads -1 --out " + path("x.h5"),
+                 "threads");
   // An unknown option is named as such, even with a required one missing.
   expect_refused("generate --bogus 3", "--bogus");
   // NaN where a number is needed.
