@@ -2,7 +2,8 @@
 # Tables of both models' errors at every excluded-volume point of Figs. 11
 # and 12: measured T/N, and measured / predicted - 1 for the paper's model
 # (random centres) and the excluded-volume model. Reads results/fig11[-S].csv,
-# fig12[-S].csv and, if there, fig12_equilibrated[-S].csv; writes
+# fig12[-S].csv and, if there, fig11_equilibrated[-S].csv and
+# fig12_equilibrated[-S].csv; writes
 # paper_figs/model-errors[-S].md.
 # Usage: plots/model_errors.sh [SCALE]
 set -euo pipefail
@@ -35,6 +36,10 @@ table() {  # CSV TITLE: one row per excluded-volume point
   echo "Rendered by plots/model_errors.sh from the result CSVs."
   echo
   table "results/fig11$suffix.csv" "Figure 11 (T/N against nu)"
+  if [ -f "results/fig11_equilibrated$suffix.csv" ]; then
+    table "results/fig11_equilibrated$suffix.csv" \
+      "Figure 11, nu = 0.6, N = 10^5, packings equilibrated (10^4 sweeps of Monte Carlo with swaps; \`hgrid run experiments/fig11_equilibrated.toml\`, not part of make figures)"
+  fi
   table "results/fig12$suffix.csv" "Figure 12 (T/N against N)"
   if [ -f "results/fig12_equilibrated$suffix.csv" ]; then
     table "results/fig12_equilibrated$suffix.csv" \
