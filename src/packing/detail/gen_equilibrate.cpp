@@ -39,20 +39,32 @@ bool inside(const std::array<double, D>& x, double r, const Extent<D>& box) {
 
 struct Tally {
   std::uint64_t accepted = 0, proposed = 0, swapped = 0, swaps = 0;
+  Tally& operator+=(const Tally& o) {
+    accepted += o.accepted;
+    proposed += o.proposed;
+    swapped += o.swapped;
+    swaps += o.swaps;
+    return *this;
+  }
 };
 
 template <int D, Boundary B>
 class Checkerboard {
  public:
   Checkerboard(const Extent<D>& box, const std::vector<double>& radii, std::vector<double>& pos)
-      : box_(box), radii_(radii), pos_(pos), grid_(box, radii, width(box, radii), domains(box, radii)) {
-    const auto nd = domains(box, radii);
-    width_ = width(box, radii);
-    fitting_ = fitting(box, radii);
+      : box_(box),
+        radii_(radii),
+        pos_(pos),
+        fitting_(fitting(box, radii)),
+        width_(width(box, fitting_)),
+        grid_(box, radii, width_, domains(fitting_)) {
+    const auto nd = domains(fitting_);
     std::size_t total = 1;
     for (int k = 0; k < D; ++k) total *= static_cast<std::size_t>(nd[k]);
     start_.assign(total + 1, 0);
+    fill_.assign(total, 0);
     members_.assign(radii.size(), 0);
+    dom_.assign(radii.size(), 0);
     for (std::size_t c = 0; c < total; ++c) {
       std::size_t rest = c;
       unsigned colour = 0;
@@ -75,19 +87,17 @@ class Checkerboard {
     const std::uint64_t seed = rng.bits();
     grid_.reset(origin);
     const std::size_t n = radii_.size();
-    std::vector<std::size_t>& dom = dom_;
-    dom.resize(n);
     std::fill(start_.begin(), start_.end(), 0);
     for (std::size_t i = 0; i < n; ++i) {
       std::array<double, D> x;
       for (int k = 0; k < D; ++k) x[k] = pos_[i * D + k];
       grid_.insert(static_cast<std::uint32_t>(i), x, radii_[i]);
-      dom[i] = grid_.domain_of(x, radii_[i]);
-      ++start_[dom[i] + 1];
+      dom_[i] = grid_.domain_of(x, radii_[i]);
+      ++start_[dom_[i] + 1];
     }
     for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
-    std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) members_[fill[dom[i]]++] = static_cast<std::uint32_t>(i);
+    std::copy(start_.begin(), start_.end() - 1, fill_.begin());
+    for (std::size_t i = 0; i < n; ++i) members_[fill_[dom_[i]]++] = static_cast<std::uint32_t>(i);
     // The tallies are integer sums: the same in any order.
     std::uint64_t accepted = 0, proposed = 0, swapped = 0, swaps = 0;
     for (const auto& list : by_colour_) {
@@ -110,8 +120,7 @@ class Checkerboard {
   }
 
  private:
-  static Extent<D> width(const Extent<D>& box, const std::vector<double>& radii) {
-    const auto nd = fitting(box, radii);
+  static Extent<D> width(const Extent<D>& box, const std::array<std::int64_t, D>& nd) {
     Extent<D> w;
     for (int k = 0; k < D; ++k) w[k] = box[k] / static_cast<double>(nd[k]);
     return w;
@@ -130,8 +139,7 @@ class Checkerboard {
   }
   /// Domains of the grid: with walls one more per axis (the shifted grid
   /// covers the box from origin - width).
-  static std::array<std::int64_t, D> domains(const Extent<D>& box, const std::vector<double>& radii) {
-    auto nd = fitting(box, radii);
+  static std::array<std::int64_t, D> domains(std::array<std::int64_t, D> nd) {
     if constexpr (B == Boundary::walls)
       for (auto& v : nd) ++v;
     return nd;
@@ -184,11 +192,11 @@ class Checkerboard {
   Extent<D> box_;
   const std::vector<double>& radii_;
   std::vector<double>& pos_;
+  std::array<std::int64_t, D> fitting_;  // domains that tile the box, per axis
+  Extent<D> width_;                       // their width
   InsertGrid<D, B> grid_;
-  Extent<D> width_;
-  std::array<std::int64_t, D> fitting_;
   std::array<std::vector<std::uint32_t>, (1u << D)> by_colour_;
-  std::vector<std::size_t> start_, dom_;
+  std::vector<std::size_t> start_, fill_, dom_;
   std::vector<std::uint32_t> members_;
 };
 
@@ -201,11 +209,7 @@ Equilibration run(const std::array<double, 3>& box3, const std::vector<double>& 
   const int T = resolve_threads(threads);
   Tally sum;
   for (int sweep = 0; sweep < sweeps; ++sweep) {
-    const Tally t = board.sweep(rng, T);
-    sum.accepted += t.accepted;
-    sum.proposed += t.proposed;
-    sum.swapped += t.swapped;
-    sum.swaps += t.swaps;
+    sum += board.sweep(rng, T);
     char buf[64];
     std::snprintf(buf, sizeof buf, "sweep %d, acceptance %.2f (moves), %.2f (swaps)", sweep + 1,
                   static_cast<double>(sum.accepted) / static_cast<double>(std::max<std::uint64_t>(sum.proposed, 1)),
