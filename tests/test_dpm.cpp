@@ -237,5 +237,59 @@ TEST(Dpm, TrajectoryDoesNotDependOnTheThreads) {
   }
 }
 
+// The same with every force on: a dense, overlapping pile between walls, with
+// friction and gravity (contacts, forces, torques and the integration all on
+// the given number of threads; positions, velocities and counters equal bit
+// for bit).
+TEST(Dpm, DensePileWithFrictionDoesNotDependOnTheThreads) {
+  for (int d : {2, 3}) {
+    const std::uint64_t seed = kSeed + 13 * d;
+    SCOPED_TRACE("seed " + std::to_string(seed) + ", d " + std::to_string(d));
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const int per_axis = d == 2 ? 60 : 14;
+    const double spacing = 1.6, a = per_axis * spacing;
+    std::vector<double> pos, radii, vel;
+    const int n = d == 2 ? per_axis * per_axis : per_axis * per_axis * per_axis;
+    for (int i = 0; i < n; ++i) {
+      int rest = i;
+      for (int k = 0; k < d; ++k) {
+        pos.push_back((rest % per_axis + 0.3 + 0.4 * u(rng)) * spacing);
+        rest /= per_axis;
+        vel.push_back(0.2 * (u(rng) - 0.5));
+      }
+      radii.push_back(0.6 + 0.4 * u(rng));  // overlaps its neighbours and the walls
+    }
+    const auto p = make_packing(d, Boundary::walls, {a, a, a}, pos, radii);
+    auto c = base_config(d, Boundary::walls, p.box, 0.5, 1.0 / 20);
+    c.contact_time = 0.5;
+    c.dt = c.contact_time / 20;
+    c.friction = true;
+    c.gravity = true;
+    c.g = {0.0, -0.05, 0.0};
+    c.sizes = {1.3, 2.1};
+    std::vector<std::vector<double>> runs;
+    std::vector<std::array<std::uint64_t, 3>> counts;
+    for (int threads : {1, 2, 3, 8}) {
+      c.threads = threads;
+      auto sim = make_simulation(c, p, vel);
+      sim->run(40);
+      auto x = sim->positions();
+      const auto v = sim->velocities();
+      x.insert(x.end(), v.begin(), v.end());
+      x.push_back(sim->kinetic_energy());  // includes the spins
+      runs.push_back(std::move(x));
+      const auto& st = sim->stats();
+      counts.push_back({st.pair_contacts, st.wall_contacts, st.friction_evaluations});
+    }
+    EXPECT_GT(counts[0][0], 40u * static_cast<std::uint64_t>(n) / 2) << "dense: over half a contact per particle";
+    EXPECT_GT(counts[0][1], 40u);
+    for (std::size_t k = 1; k < runs.size(); ++k) {
+      EXPECT_TRUE(runs[k] == runs[0]) << "threads run " << k;
+      EXPECT_EQ(counts[k], counts[0]) << "threads run " << k;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace hgrid::dpm

@@ -244,5 +244,35 @@ TEST_F(Cli, DpmSceneWritesHdf5AndCsvLikeTheOtherScenes) {
   EXPECT_EQ(text.find("paper"), std::string::npos) << "the paper's constants belong to plots/";
 }
 
+TEST_F(Cli, DpmSceneOnTwoThreadsRunsTheSameSimulation) {
+  auto scene = [&](const std::string& name, const std::string& threads) {
+    std::ofstream(path(name + ".toml")) << "kind = \"dpm\"\nname = \"" << name << "\"\n"
+                                        << "[initial]\nd = 2\nn = 400\nnu = 0.4\nalpha = -3\nomega = 5\n"
+                                           "[contact]\ncontact_time = 0.05\ndt_over_tc = 0.05\n"
+                                           "[effects]\nfriction = true\n"
+                                           "[run]\nsteps = 200\nsample_every = 50\nthreads = "
+                                        << threads << "\n[grids]\nreference_size = 10\n";
+    return hgrid_run("run " + path(name + ".toml") + " --scale smoke --results " + path("res") + " --packings " +
+                     path("cache"));
+  };
+  auto energies = [&](const std::string& name) {  // the CSV's data lines
+    std::ifstream csv(path("res/" + name + "-smoke.csv"));
+    std::string line, out;
+    while (std::getline(csv, line))
+      if (!line.empty() && line[0] != '#') out += line + "\n";
+    return out;
+  };
+  for (const auto& [name, threads] : {std::pair{"one", "1"}, std::pair{"two", "2"}}) {
+    const Result r = scene(name, threads);
+    ASSERT_EQ(r.status, 0) << r.err;
+  }
+  EXPECT_GT(energies("one").size(), 100u);
+  EXPECT_EQ(energies("one"), energies("two"));
+  const Result bad = scene("bad", "-1");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("run.threads"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(path("res/bad-smoke.csv")));
+}
+
 }  // namespace
 }  // namespace hgrid::test

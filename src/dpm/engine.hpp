@@ -20,21 +20,26 @@
 // direction or the grid's internals, so the trajectory is a property of the
 // scene alone (the optimal grid and the linked cell run the same simulation,
 // bit for bit). The sort is an LSD radix sort of the packed pair keys, timed
-// with the forces, not with the contact detection.
+// with the forces, not with the contact detection. On several threads the
+// sort, the forces and the sums run on all of them and still add every
+// particle's contributions in canonical order (grid/pair_sum.hpp), so the
+// trajectory is also the same for any number of threads.
 #pragma once
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
-#include "grid/pair_keys.hpp"
 #include "dpm/contact_law.hpp"
 #include "dpm/simulation.hpp"
 #include "grid/hgrid.hpp"
+#include "grid/pair_sum.hpp"
 
 namespace hgrid::dpm {
 
@@ -62,7 +67,7 @@ class Engine final : public Simulation {
 
  public:
   Engine(const DpmConfig& c, const Packing& p, const std::vector<double>& vel)
-      : c_(c), law_(SpringDashpot::from(c.contact_time, c.restitution)), s_(p.spheres<D>()), pk_(s_.size()) {
+      : c_(c), law_(SpringDashpot::from(c.contact_time, c.restitution)), s_(p.spheres<D>()), sum_(s_.size()) {
     for (int k = 0; k < D; ++k) box_[k] = c.box[k];
     const std::size_t n = s_.size();
     v_.assign(n, Vec<D>{});
@@ -76,6 +81,7 @@ class Engine final : public Simulation {
     if constexpr (Friction) {
       w_.assign(n, Spin<D>{});
       tq_.assign(n, Spin<D>{});
+      tqnew_.assign(n, Spin<D>{});
       inv_I_.resize(n);
       for (std::size_t i = 0; i < n; ++i)
         inv_I_[i] = 1.0 / ((D == 2 ? 0.5 : 0.4) * m_[i] * s_[i].r * s_[i].r);
@@ -83,7 +89,8 @@ class Engine final : public Simulation {
     grid_params_.sizes = c.sizes;
     grid_params_.search = c.search;
     grid_params_.threads = c.threads;
-    thread_keys_.resize(static_cast<std::size_t>(resolve_threads(c.threads)));
+    threads_ = resolve_threads(c.threads);
+    thread_keys_.resize(static_cast<std::size_t>(threads_));
     compute_forces();
   }
 
@@ -91,7 +98,12 @@ class Engine final : public Simulation {
     const double dt = c_.dt, h = 0.5 * dt;
     for (std::uint64_t n = 0; n < steps; ++n) {
       auto t0 = Clock::now();
-      for (std::size_t i = 0; i < s_.size(); ++i) {
+      const std::ptrdiff_t n_particles = static_cast<std::ptrdiff_t>(s_.size());
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(static) num_threads(threads_) if (threads_ > 1)
+#endif
+      for (std::ptrdiff_t ii = 0; ii < n_particles; ++ii) {
+        const auto i = static_cast<std::size_t>(ii);
         const double im = 1.0 / m_[i];
         for (int k = 0; k < D; ++k) {
           v_[i][k] += h * f_[i][k] * im;
@@ -106,7 +118,11 @@ class Engine final : public Simulation {
       time_ += dt;
       compute_forces();
       t0 = Clock::now();
-      for (std::size_t i = 0; i < s_.size(); ++i) {
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(static) num_threads(threads_) if (threads_ > 1)
+#endif
+      for (std::ptrdiff_t ii = 0; ii < n_particles; ++ii) {
+        const auto i = static_cast<std::size_t>(ii);
         const double im = 1.0 / m_[i];
         for (int k = 0; k < D; ++k) v_[i][k] += h * f_[i][k] * im;
         if constexpr (Friction)
@@ -139,11 +155,12 @@ class Engine final : public Simulation {
     GridParams one = grid_params_;  // a diagnostic: one thread
     one.threads = 1;
     const HGrid<D, B> grid(s_, box_, one);
+    const detail::PairKeys pk(s_.size());
     std::vector<std::uint64_t> keys, tmp;
-    grid.for_each_pair([&](std::uint32_t i, std::uint32_t j) { keys.push_back(pk_.key(i, j)); });
-    pk_.sort(keys, tmp);
+    grid.for_each_pair([&](std::uint32_t i, std::uint32_t j) { keys.push_back(pk.key(i, j)); });
+    pk.sort(keys, tmp);
     for (const std::uint64_t key : keys) {
-      const std::uint32_t i = pk_.first(key), j = pk_.second(key);
+      const std::uint32_t i = pk.first(key), j = pk.second(key);
       const double dist = std::sqrt(detail::dist2<D, B>(s_[i].x, s_[j].x, box_));
       e += law_.energy(m_[i] * m_[j] / (m_[i] + m_[j]), s_[i].r + s_[j].r - dist);
     }
@@ -198,8 +215,7 @@ class Engine final : public Simulation {
   /// Tangential force on the particle whose contact point sees the partner
   /// move with relative velocity vrel, normal n, normal force fn >= 0:
   /// viscous, capped by Coulomb's mu * fn.
-  Vec<D> tangential(const Vec<D>& vrel, const Vec<D>& n, double m, double fn) {
-    ++stats_.friction_evaluations;
+  Vec<D> tangential(const Vec<D>& vrel, const Vec<D>& n, double m, double fn) const {
     double vn = 0;
     for (int k = 0; k < D; ++k) vn += vrel[k] * n[k];
     Vec<D> vt;
@@ -215,116 +231,148 @@ class Engine final : public Simulation {
     return vt;
   }
 
+  /// What pair (i, j) contributes: normal force fn n on j (-fn n on i); with
+  /// friction, tangential force ft on i (-ft on j) and the arm n x ft, whose
+  /// torque is r times it on each.
+  struct NormalForce {
+    Vec<D> fn;
+  };
+  struct FullForce {
+    Vec<D> fn, ft;
+    Spin<D> arm;
+  };
+  using PairForce = std::conditional_t<Friction, FullForce, NormalForce>;
+
+  PairForce pair_force(std::uint32_t i, std::uint32_t j) const {
+    PairForce out;
+    Vec<D> d;
+    double d2 = 0;
+    for (int k = 0; k < D; ++k) {
+      d[k] = s_[j].x[k] - s_[i].x[k];
+      if constexpr (B == Boundary::periodic) d[k] = detail::min_image(d[k], box_[k]);
+      d2 += d[k] * d[k];
+    }
+    const double dist = std::sqrt(d2);
+    Vec<D> nrm;
+    for (int k = 0; k < D; ++k) nrm[k] = d[k] / dist;
+    const Vec<D> vi = vpred(i), vj = vpred(j);
+    Vec<D> vrel;
+    double rate = 0;  // d(overlap)/dt = -(vj - vi).n
+    for (int k = 0; k < D; ++k) {
+      vrel[k] = vj[k] - vi[k];
+      rate -= vrel[k] * nrm[k];
+    }
+    const double m = m_[i] * m_[j] / (m_[i] + m_[j]);
+    const double fn = law_.force(m, s_[i].r + s_[j].r - dist, rate);
+    for (int k = 0; k < D; ++k) out.fn[k] = fn * nrm[k];
+    if constexpr (Friction) {
+      const Spin<D> wi = wpred(i), wj = wpred(j);
+      Spin<D> ws;
+      for (std::size_t k = 0; k < ws.size(); ++k) ws[k] = s_[i].r * wi[k] + s_[j].r * wj[k];
+      const Vec<D> rot = cross_wn<D>(ws, nrm);
+      for (int k = 0; k < D; ++k) vrel[k] -= rot[k];
+      out.ft = tangential(vrel, nrm, m, std::max(fn, 0.0));  // on i
+      out.arm = cross_rn<D>(nrm, out.ft);
+    }
+    return out;
+  }
+
   void compute_forces() {
     auto t0 = Clock::now();
     if (grid_) grid_->rebuild(s_);
     else grid_.emplace(s_, box_, grid_params_);
     const auto t_built = Clock::now();
-    keys_.clear();
-    if (thread_keys_.size() <= 1) {
-      grid_->for_each_pair([&](std::uint32_t i, std::uint32_t j) { keys_.push_back(pk_.key(i, j)); });
+    for (auto& k : thread_keys_) k.clear();
+    if (threads_ <= 1) {
+      auto& keys = thread_keys_[0];
+      grid_->for_each_pair([&](std::uint32_t i, std::uint32_t j) { keys.push_back(sum_.key(i, j)); });
     } else {
-      // Each thread its own list; their concatenation is sorted into the
-      // canonical order below, so the trajectory is the same for any number
-      // of threads.
-      for (auto& k : thread_keys_) k.clear();
       grid_->for_each_pair(
-          [&](int t, std::uint32_t i, std::uint32_t j) { thread_keys_[static_cast<std::size_t>(t)].push_back(pk_.key(i, j)); });
-      for (const auto& k : thread_keys_) keys_.insert(keys_.end(), k.begin(), k.end());
+          [&](int t, std::uint32_t i, std::uint32_t j) { thread_keys_[static_cast<std::size_t>(t)].push_back(sum_.key(i, j)); });
     }
     stats_.seconds_grid_build += std::chrono::duration<double>(t_built - t0).count();
     stats_.seconds_query += seconds_since(t_built);
     stats_.seconds_contact_detection += seconds_since(t0);
 
+    // Canonical order, then every particle's forces: gravity, its pairs in
+    // canonical order, the walls (the same additions in the same order on
+    // any number of threads).
     t0 = Clock::now();
-    pk_.sort(keys_, tkeys_);
+    sum_.gather(thread_keys_);
     const std::size_t n = s_.size();
     std::vector<Vec<D>>& fnew = fnew_;
-    fnew.assign(n, Vec<D>{});  // keeps its capacity: f_ and fnew_ swap every step
-    if constexpr (Friction) tq_.assign(n, Spin<D>{});
-    if constexpr (Gravity) {
-      for (std::size_t i = 0; i < n; ++i)
-        for (int k = 0; k < D; ++k) fnew[i][k] = m_[i] * c_.g[k];
-      stats_.gravity_evaluations += n;
-    }
-    for (const std::uint64_t key : keys_) {
-      const std::uint32_t i = pk_.first(key), j = pk_.second(key);
-      Vec<D> d;
-      double d2 = 0;
-      for (int k = 0; k < D; ++k) {
-        d[k] = s_[j].x[k] - s_[i].x[k];
-        if constexpr (B == Boundary::periodic) d[k] = detail::min_image(d[k], box_[k]);
-        d2 += d[k] * d[k];
-      }
-      const double dist = std::sqrt(d2);
-      Vec<D> nrm;
-      for (int k = 0; k < D; ++k) nrm[k] = d[k] / dist;
-      const Vec<D> vi = vpred(i), vj = vpred(j);
-      Vec<D> vrel;
-      double rate = 0;  // d(overlap)/dt = -(vj - vi).n
-      for (int k = 0; k < D; ++k) {
-        vrel[k] = vj[k] - vi[k];
-        rate -= vrel[k] * nrm[k];
-      }
-      const double m = m_[i] * m_[j] / (m_[i] + m_[j]);
-      const double fn = law_.force(m, s_[i].r + s_[j].r - dist, rate);
-      for (int k = 0; k < D; ++k) {
-        fnew[i][k] -= fn * nrm[k];
-        fnew[j][k] += fn * nrm[k];
-      }
-      if constexpr (Friction) {
-        const Spin<D> wi = wpred(i), wj = wpred(j);
-        Spin<D> ws;
-        for (std::size_t k = 0; k < ws.size(); ++k) ws[k] = s_[i].r * wi[k] + s_[j].r * wj[k];
-        const Vec<D> rot = cross_wn<D>(ws, nrm);
-        for (int k = 0; k < D; ++k) vrel[k] -= rot[k];
-        const Vec<D> ft = tangential(vrel, nrm, m, std::max(fn, 0.0));  // on i
-        const Spin<D> arm = cross_rn<D>(nrm, ft);
-        for (int k = 0; k < D; ++k) {
-          fnew[i][k] += ft[k];
-          fnew[j][k] -= ft[k];
-        }
-        for (std::size_t k = 0; k < arm.size(); ++k) {
-          tq_[i][k] += s_[i].r * arm[k];
-          tq_[j][k] += s_[j].r * arm[k];
-        }
-      }
-    }
-    stats_.pair_contacts += keys_.size();
-    if constexpr (B == Boundary::walls) wall_forces(fnew);
+    fnew.resize(n);  // keeps its capacity: f_ and fnew_ swap every step (as tq_ and tqnew_)
+    if constexpr (Friction) tqnew_.resize(n);
+    std::atomic<std::uint64_t> wall_contacts{0};
+    sum_.sum(
+        pair_forces_, [&](std::uint32_t i, std::uint32_t j) { return pair_force(i, j); },
+        [&](std::size_t p) {
+          if constexpr (Gravity)
+            for (int k = 0; k < D; ++k) fnew[p][k] = m_[p] * c_.g[k];
+          else fnew[p] = Vec<D>{};
+          if constexpr (Friction) tqnew_[p] = Spin<D>{};
+        },
+        [&](const PairForce& r, std::size_t i) {  // i is the pair's first particle
+          for (int k = 0; k < D; ++k) fnew[i][k] -= r.fn[k];
+          if constexpr (Friction) {
+            for (int k = 0; k < D; ++k) fnew[i][k] += r.ft[k];
+            for (std::size_t k = 0; k < r.arm.size(); ++k) tqnew_[i][k] += s_[i].r * r.arm[k];
+          }
+        },
+        [&](const PairForce& r, std::size_t j) {  // j is the pair's second particle
+          for (int k = 0; k < D; ++k) fnew[j][k] += r.fn[k];
+          if constexpr (Friction) {
+            for (int k = 0; k < D; ++k) fnew[j][k] -= r.ft[k];
+            for (std::size_t k = 0; k < r.arm.size(); ++k) tqnew_[j][k] += s_[j].r * r.arm[k];
+          }
+        },
+        [&](std::size_t p) {
+          if constexpr (B == Boundary::walls) {
+            const std::uint64_t w = wall_force(p, fnew[p]);
+            if (w > 0) wall_contacts.fetch_add(w, std::memory_order_relaxed);
+          }
+        });
+    const std::uint64_t pairs = sum_.keys().size();
+    stats_.pair_contacts += pairs;
+    stats_.wall_contacts += wall_contacts.load();
+    if constexpr (Gravity) stats_.gravity_evaluations += n;
+    if constexpr (Friction) stats_.friction_evaluations += pairs + wall_contacts.load();
     f_.swap(fnew);
+    if constexpr (Friction) tq_.swap(tqnew_);
     stats_.seconds_forces += seconds_since(t0);
   }
 
-  void wall_forces(std::vector<Vec<D>>& f) {
-    for (std::size_t i = 0; i < s_.size(); ++i) {
-      for (int k = 0; k < D; ++k) {
-        const double x = s_[i].x[k], r = s_[i].r;
-        if (x < 0.0 || x > box_[k])
-          throw std::runtime_error("dpm: particle " + std::to_string(i) + " left the walled box at t = " +
-                                   std::to_string(time_) + " (time step too large for the velocities?)");
-        for (int side = 0; side < 2; ++side) {
-          const double overlap = side == 0 ? r - x : x + r - box_[k];
-          if (overlap <= 0) continue;
-          ++stats_.wall_contacts;
-          Vec<D> nrm{};  // from the particle towards the wall
-          nrm[k] = side == 0 ? -1.0 : 1.0;
-          const Vec<D> v = vpred(i);
-          const double fn = law_.force(m_[i], overlap, v[k] * nrm[k]);
-          f[i][k] -= fn * nrm[k];
-          if constexpr (Friction) {
-            // The wall is at rest; its contact point sees the particle's contact point move.
-            Vec<D> vrel;
-            const Vec<D> rot = cross_wn<D>(wpred(i), nrm);
-            for (int a = 0; a < D; ++a) vrel[a] = -(v[a] + r * rot[a]);
-            const Vec<D> ft = tangential(vrel, nrm, m_[i], std::max(fn, 0.0));
-            const Spin<D> arm = cross_rn<D>(nrm, ft);
-            for (int a = 0; a < D; ++a) f[i][a] += ft[a];
-            for (std::size_t a = 0; a < arm.size(); ++a) tq_[i][a] += r * arm[a];
-          }
+  /// Adds the walls' forces (and torques) on particle i to f; returns its
+  /// number of wall contacts. Throws if it left the box.
+  std::uint64_t wall_force(std::size_t i, Vec<D>& f) {
+    std::uint64_t contacts = 0;
+    for (int k = 0; k < D; ++k) {
+      const double x = s_[i].x[k], r = s_[i].r;
+      if (x < 0.0 || x > box_[k])
+        throw std::runtime_error("dpm: particle " + std::to_string(i) + " left the walled box at t = " +
+                                 std::to_string(time_) + " (time step too large for the velocities?)");
+      for (int side = 0; side < 2; ++side) {
+        const double overlap = side == 0 ? r - x : x + r - box_[k];
+        if (overlap <= 0) continue;
+        ++contacts;
+        Vec<D> nrm{};  // from the particle towards the wall
+        nrm[k] = side == 0 ? -1.0 : 1.0;
+        const Vec<D> v = vpred(i);
+        const double fn = law_.force(m_[i], overlap, v[k] * nrm[k]);
+        f[k] -= fn * nrm[k];
+        if constexpr (Friction) {
+          // The wall is at rest; its contact point sees the particle's contact point move.
+          Vec<D> vrel;
+          const Vec<D> rot = cross_wn<D>(wpred(i), nrm);
+          for (int a = 0; a < D; ++a) vrel[a] = -(v[a] + r * rot[a]);
+          const Vec<D> ft = tangential(vrel, nrm, m_[i], std::max(fn, 0.0));
+          const Spin<D> arm = cross_rn<D>(nrm, ft);
+          for (int a = 0; a < D; ++a) f[a] += ft[a];
+          for (std::size_t a = 0; a < arm.size(); ++a) tqnew_[i][a] += r * arm[a];
         }
       }
     }
+    return contacts;
   }
 
   DpmConfig c_;
@@ -334,11 +382,12 @@ class Engine final : public Simulation {
   std::vector<Sphere<D>> s_;
   std::vector<Vec<D>> v_, f_;
   std::vector<double> m_;
-  std::vector<Spin<D>> w_, tq_;  // only with friction
+  std::vector<Spin<D>> w_, tq_, tqnew_;  // only with friction (tqnew_: the torques being computed)
   std::vector<double> inv_I_;
-  detail::PairKeys pk_;                      // contact pairs as keys in canonical order
-  std::vector<std::uint64_t> keys_, tkeys_;  // this step's contact pairs, and scratch
-  std::vector<std::vector<std::uint64_t>> thread_keys_;  // per thread, when contact detection has several
+  PairSum sum_;                                          // this step's contact pairs in canonical order
+  std::vector<PairForce> pair_forces_;                   // scratch of the threaded force pass
+  std::vector<std::vector<std::uint64_t>> thread_keys_;  // the pairs each thread of the contact detection found
+  int threads_ = 1;
   std::optional<HGrid<D, B>> grid_;  // built at the first step, rebuilt at every later one
   std::vector<Vec<D>> fnew_;         // the forces being computed (swapped with f_)
   StepStats stats_;

@@ -20,6 +20,7 @@
 #include "experiment/dpm_scene_file.hpp"
 #include "dpm/simulation.hpp"
 #include "grid/hgrid.hpp"
+#include "grid/threads.hpp"
 #include "model/model.hpp"
 #include "io/provenance.hpp"
 #include "experiment/packing_cache.hpp"
@@ -198,6 +199,7 @@ void run_dpm_scene(const std::string& path, const std::string& scale, const RunO
       {"contact_time", sc.config.contact_time},
       {"dt_over_tc", sc.dt_over_tc},
       {"steps", sc.steps},
+      {"threads", resolve_threads(sc.config.threads)},
       {"friction", sc.config.friction},
       {"gravity", sc.config.gravity},
       {"K", sc.K},

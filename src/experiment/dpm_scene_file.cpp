@@ -1,5 +1,6 @@
 #include "experiment/dpm_scene_file.hpp"
 
+#include <algorithm>
 #include <map>
 #include <set>
 #include <sstream>
@@ -9,6 +10,7 @@
 #include "experiment/detail/scene_reader.hpp"
 
 #include "grid/error.hpp"
+#include "grid/threads.hpp"
 
 namespace hgrid::dpm {
 namespace {
@@ -17,7 +19,7 @@ const detail::SceneSections kSections = {
     {"initial", {"d", "n", "nu", "alpha", "omega", "boundary", "placement", "seed", "speed", "velocity_seed"}},
     {"contact", {"contact_time", "restitution", "dt_over_tc", "density"}},
     {"effects", {"friction", "mu", "friction_damping", "gravity"}},
-    {"run", {"steps", "sample_every"}},
+    {"run", {"steps", "sample_every", "threads"}},
     {"grids", {"method", "K", "reference_size"}},
 };
 
@@ -102,6 +104,11 @@ DpmScene load_dpm_scene(const std::string& path, const std::string& scale) {
   s.sample_every = count(rn, "run", "sample_every", 100);
   if (s.steps == 0) throw InputError("run.steps", "must be >= 1");
   if (s.sample_every == 0) throw InputError("run.sample_every", "must be >= 1");
+  // Threads of contact detection, forces and integration (0 = all cores);
+  // the trajectory is the same for any number. Default 1: the time model's
+  // predicted speed-up is for one core.
+  const std::uint64_t threads = count(rn, "run", "threads", 1);
+  s.config.threads = check_threads(static_cast<int>(std::min<std::uint64_t>(threads, kMaxThreads + 1)), "run.threads");
 
   const auto& gr = section(root, "grids");
   s.method = parse_cell_method(text(gr, "grids", "method", "optimal"), "grids.method");

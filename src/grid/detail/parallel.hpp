@@ -1,4 +1,5 @@
-// The grid's one parallel loop (OpenMP; a plain loop without it).
+// The grid's parallel loop (OpenMP; a plain loop without it) and a thread's
+// place in its team.
 #pragma once
 #include <cstddef>
 
@@ -7,6 +8,19 @@
 #endif
 
 namespace hgrid::detail {
+
+/// The calling thread's index in its team, and the team's size ({0, 1}
+/// outside a parallel region or without OpenMP).
+struct TeamSlot {
+  int t, team;
+};
+inline TeamSlot team_slot() {
+#if defined(_OPENMP)
+  return {omp_get_thread_num(), omp_get_num_threads()};
+#else
+  return {0, 1};
+#endif
+}
 
 /// Calls fn(i, t) for i in [0, n) on `threads` threads, t the calling
 /// thread's index in [0, threads); the i are handed out one at a time. fn
