@@ -37,8 +37,10 @@ table() {  # CSV TITLE: one row per excluded-volume point
   echo
   table "results/fig11$suffix.csv" "Figure 11 (T/N against nu)"
   if [ -f "results/fig11_equilibrated$suffix.csv" ]; then
+    if [ "$scale" = paper ]; then what="omega = 10, nu = 0.6, N = 10^6, packing equilibrated (3000 sweeps"
+    else what="nu = 0.6, N = 10^5, packings equilibrated (10^4 sweeps"; fi
     table "results/fig11_equilibrated$suffix.csv" \
-      "Figure 11, nu = 0.6, N = 10^5, packings equilibrated (10^4 sweeps of Monte Carlo with swaps; \`hgrid run experiments/fig11_equilibrated.toml\`, not part of make figures)"
+      "Figure 11, $what of Monte Carlo with swaps; \`hgrid run experiments/fig11_equilibrated.toml --scale $scale\`, not part of make figures)"
   fi
   table "results/fig12$suffix.csv" "Figure 12 (T/N against N)"
   if [ -f "results/fig12_equilibrated$suffix.csv" ]; then
