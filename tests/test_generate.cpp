@@ -250,6 +250,37 @@ TEST(Generate, EquilibrationIsTheSameForAnyThreadCount) {
   }
 }
 
+// Sequential addition tries a particle's trials several at a time on
+// threads once particles need many trials: the same packing for any thread
+// count, also when it stalls (20 000 trials of one particle) and the growth
+// route starts from the generator's state after it.
+TEST(Generate, SequentialAdditionIsTheSameForAnyThreadCount) {
+  struct Case {
+    int d;
+    std::size_t n;
+    double nu, alpha, omega;
+    Boundary b;
+  };
+  for (const Case c : {Case{3, 6000, 0.55, -3, 10, Boundary::periodic}, Case{3, 4000, 0.5, -3, 10, Boundary::walls},
+                       Case{2, 4000, 0.7, -3, 5, Boundary::periodic}, Case{2, 3000, 0.65, -3, 5, Boundary::walls},
+                       Case{3, 1500, 0.45, 0, 1.5, Boundary::periodic}}) {  // the last stalls: growth + FIRE
+    SCOPED_TRACE("d " + std::to_string(c.d) + " n " + std::to_string(c.n) + " " + to_string(c.b) + " seed " +
+                 std::to_string(kSeed));
+    auto s = spec(c.d, c.n, c.nu, c.alpha, c.omega, Placement::excluded, c.b);
+    s.threads = 1;
+    const Packing one = generate_packing(s);
+    const bool grown = one.str_attrs.at("method") != "rsa";
+    EXPECT_EQ(grown, c.alpha == 0) << "the last case must stall, the others not";
+    EXPECT_LE(assess_packing(one, nullptr).max_rel_overlap, grown ? kRelaxedOverlapTol : 0.0);
+    for (const int t : {2, 3, 8}) {
+      s.threads = t;
+      const Packing many = generate_packing(s);
+      EXPECT_EQ(one.positions, many.positions) << t << " threads";
+      EXPECT_EQ(one.str_attrs.at("method"), many.str_attrs.at("method"));
+    }
+  }
+}
+
 // A move that would leave its domain is rejected, but the domains shift
 // every sweep: particles must still travel further than a domain is wide.
 TEST(Generate, EquilibrationCrossesDomains) {

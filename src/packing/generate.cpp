@@ -88,7 +88,8 @@ void place_excluded(const PackingSpec& s, double rcp, detail::GenRng& rng, Packi
   std::iota(order.begin(), order.end(), 0u);
   std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return p.radii[a] > p.radii[b]; });
   Progress progress(s.progress, "excluded-volume placement (sequential addition)");
-  const std::size_t placed = detail::rsa_place(s.d, s.boundary, p.box, p.radii, order, 1.0, rng, p.positions, progress);
+  const std::size_t placed = detail::rsa_place(s.d, s.boundary, p.box, p.radii, order, 1.0, resolve_threads(s.threads), rng,
+                                                 p.positions, progress);
   if (placed == s.n) {
     p.str_attrs["method"] = "rsa";
     return;
@@ -102,7 +103,9 @@ void place_excluded(const PackingSpec& s, double rcp, detail::GenRng& rng, Packi
   for (int tries = 0;; ++tries) {
     scale0 = std::pow(nu0 / s.nu, 1.0 / s.d);
     Progress p0(s.progress, "sequential addition at nu = " + brief(nu0));
-    if (detail::rsa_place(s.d, s.boundary, p.box, p.radii, order, scale0, rng, p.positions, p0) == s.n) break;
+    if (detail::rsa_place(s.d, s.boundary, p.box, p.radii, order, scale0, resolve_threads(s.threads), rng, p.positions,
+                          p0) == s.n)
+      break;
     if (tries == 5) throw InputError("nu", unreachable(s, rcp, "sequential addition stalls even at nu = " + brief(nu0)));
     nu0 *= 0.8;
   }

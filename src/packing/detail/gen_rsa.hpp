@@ -17,9 +17,11 @@ inline constexpr std::uint64_t kRsaMaxAttempts = 20000;
 /// (radii descending), each at the first uniform trial position that overlaps
 /// no placed sphere (walls: at least its radius from every wall). Writes
 /// pos[i*d + k] for the placed ones. Returns how many were placed (all, unless
-/// one exhausted kRsaMaxAttempts).
+/// one exhausted kRsaMaxAttempts). Where particles need many trials, their
+/// trials run several at a time on `threads` threads (>= 1); the packing and
+/// the generator's state afterwards are the same for any number.
 std::size_t rsa_place(int d, Boundary b, const std::array<double, 3>& box, const std::vector<double>& radii,
-                      const std::vector<std::uint32_t>& order, double scale, GenRng& rng, std::vector<double>& pos,
-                      Progress& progress);
+                      const std::vector<std::uint32_t>& order, double scale, int threads, GenRng& rng,
+                      std::vector<double>& pos, Progress& progress);
 
 }  // namespace hgrid::detail
