@@ -261,9 +261,9 @@ TEST(Generate, SequentialAdditionIsTheSameForAnyThreadCount) {
     double nu, alpha, omega;
     Boundary b;
   };
-  for (const Case c : {Case{3, 6000, 0.55, -3, 10, Boundary::periodic}, Case{3, 4000, 0.5, -3, 10, Boundary::walls},
-                       Case{2, 4000, 0.7, -3, 5, Boundary::periodic}, Case{2, 3000, 0.65, -3, 5, Boundary::walls},
-                       Case{3, 1500, 0.45, 0, 1.5, Boundary::periodic}}) {  // the last stalls: growth + FIRE
+  for (const Case c : {Case{3, 4000, 0.55, -3, 10, Boundary::periodic}, Case{3, 3000, 0.5, -3, 10, Boundary::walls},
+                       Case{2, 3000, 0.7, -3, 5, Boundary::periodic}, Case{2, 2000, 0.65, -3, 5, Boundary::walls},
+                       Case{3, 400, 0.45, 0, 1.5, Boundary::periodic}}) {  // the last stalls: growth + FIRE
     SCOPED_TRACE("d " + std::to_string(c.d) + " n " + std::to_string(c.n) + " " + to_string(c.b) + " seed " +
                  std::to_string(kSeed));
     auto s = spec(c.d, c.n, c.nu, c.alpha, c.omega, Placement::excluded, c.b);
