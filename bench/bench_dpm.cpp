@@ -15,20 +15,23 @@ namespace {
 
 constexpr std::uint64_t kSeed = 7;
 
-const Packing& initial() {
-  static const Packing p = [] {
-    PackingSpec s;
-    s.d = 2;
-    s.n = 10000;
-    s.nu = 0.4;
-    s.alpha = -3;
-    s.omega = 20;
-    s.boundary = Boundary::walls;
-    s.placement = Placement::excluded;  // a DEM state has no large overlaps
-    s.seed = kSeed;
-    s.progress = false;
-    return generate_packing(s);
-  }();
+// A packing generated once (seed kSeed, no progress lines).
+Packing make_packing(int d, std::size_t n, double nu, double alpha, double omega, Boundary b, Placement placement) {
+  PackingSpec s;
+  s.d = d;
+  s.n = n;
+  s.nu = nu;
+  s.alpha = alpha;
+  s.omega = omega;
+  s.boundary = b;
+  s.placement = placement;
+  s.seed = kSeed;
+  s.progress = false;
+  return generate_packing(s);
+}
+
+const Packing& initial() {  // excluded volume: a DEM state has no large overlaps
+  static const Packing p = make_packing(2, 10000, 0.4, -3, 20, Boundary::walls, Placement::excluded);
   return p;
 }
 
@@ -70,19 +73,7 @@ BENCHMARK(BM_DpmStep)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMillis
 // counters (ms per step), so that the share of contact detection, forces and
 // integration can be read.
 const Packing& dense() {
-  static const Packing p = [] {
-    PackingSpec s;
-    s.d = 3;
-    s.n = 100000;
-    s.nu = 0.5;
-    s.alpha = -3;
-    s.omega = 10;
-    s.boundary = Boundary::periodic;
-    s.placement = Placement::random;
-    s.seed = kSeed;
-    s.progress = false;
-    return generate_packing(s);
-  }();
+  static const Packing p = make_packing(3, 100000, 0.5, -3, 10, Boundary::periodic, Placement::random);
   return p;
 }
 

@@ -20,6 +20,8 @@ class PairKeys {
   explicit PairKeys(std::size_t n) : bits_(std::max(1, static_cast<int>(std::bit_width(n > 0 ? n - 1 : 0)))) {}
   std::uint64_t key(std::uint32_t i, std::uint32_t j) const { return (std::uint64_t{i} << bits_) | j; }
   std::uint32_t first(std::uint64_t key) const { return static_cast<std::uint32_t>(key >> bits_); }
+  /// Bits of one index in a key (a key has twice as many).
+  int bits() const { return bits_; }
   std::uint32_t second(std::uint64_t key) const {
     return static_cast<std::uint32_t>(key & ((std::uint64_t{1} << bits_) - 1));
   }

@@ -15,7 +15,6 @@
 // pair's contribution is computed and added at once.
 #pragma once
 #include <algorithm>
-#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <exception>
@@ -71,8 +70,7 @@ inline void PairSum::gather(const std::vector<std::vector<std::uint64_t>>& lists
   for (const auto& l : lists) total += l.size();
   keys_.resize(total);
   tmp_.resize(total);
-  const int key_bits = 2 * std::max(1, static_cast<int>(std::bit_width(n_ > 0 ? n_ - 1 : 0)));
-  const int n_bits = key_bits / 2;
+  const int n_bits = pk_.bits(), key_bits = 2 * n_bits;
   if (T == 1 || total == 0) {
     auto out = keys_.begin();
     for (const auto& l : lists) out = std::copy(l.begin(), l.end(), out);

@@ -7,10 +7,6 @@
 
 #include "packing/detail/gen_insert_grid.hpp"
 
-#if defined(_OPENMP)
-#include <omp.h>
-#endif
-
 namespace hgrid::detail {
 namespace {
 
