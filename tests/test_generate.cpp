@@ -8,7 +8,11 @@
 #include <fstream>
 #include <unistd.h>
 
+#include <random>
+
 #include "packing/detail/gen_pairs.hpp"
+#include "packing/detail/gen_relax.hpp"
+#include "packing/progress.hpp"
 #include "grid/error.hpp"
 #include "packing/generate.hpp"
 #include "packing/rcp.hpp"
@@ -277,6 +281,48 @@ TEST(Generate, SequentialAdditionIsTheSameForAnyThreadCount) {
       const Packing many = generate_packing(s);
       EXPECT_EQ(one.positions, many.positions) << t << " threads";
       EXPECT_EQ(one.str_attrs.at("method"), many.str_attrs.at("method"));
+    }
+  }
+}
+
+// Growth + FIRE on its own (generate_packing keeps a few thousand spheres on
+// one thread): the packing and the FIRE steps do not depend on the number of
+// threads, also with ranges of a few hundred spheres and many pairs across
+// them.
+TEST(Generate, GrowthAndFireIsTheSameForAnyThreadCount) {
+  struct Case {
+    int d;
+    std::size_t n;
+    Boundary b;
+  };
+  for (const Case c : {Case{3, 1500, Boundary::periodic}, Case{3, 1200, Boundary::walls},
+                       Case{2, 1500, Boundary::walls}}) {
+    SCOPED_TRACE("d " + std::to_string(c.d) + " n " + std::to_string(c.n) + " " + to_string(c.b) + " seed " +
+                 std::to_string(kSeed));
+    std::mt19937_64 rng(kSeed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<double> radii(c.n), pos(c.n * static_cast<std::size_t>(c.d));
+    double volume = 0;
+    for (double& r : radii) {
+      r = 1 + u(rng);  // radii 1 to 2
+      volume += c.d == 3 ? 4.18879020478639 * r * r * r : 3.14159265358979 * r * r;
+    }
+    const double nu = c.d == 3 ? 0.55 : 0.75, side = std::pow(volume / nu, 1.0 / c.d);
+    const std::array<double, 3> box{side, side, c.d == 3 ? side : 0.0};
+    for (double& x : pos) x = side * u(rng);  // overlapping at first: FIRE separates them
+    const double scale0 = 0.85;
+    detail::RelaxStats one_stats;
+    std::vector<double> one = pos;
+    Progress quiet(false, "");
+    ASSERT_TRUE(detail::grow_and_relax(c.d, c.b, box, radii, scale0, 1, one, quiet, one_stats));
+    EXPECT_GT(one_stats.growth_steps, 10);
+    for (const int t : {2, 3, 8}) {
+      detail::RelaxStats st;
+      std::vector<double> many = pos;
+      ASSERT_TRUE(detail::grow_and_relax(c.d, c.b, box, radii, scale0, t, many, quiet, st)) << t << " threads";
+      EXPECT_EQ(one, many) << t << " threads";
+      EXPECT_EQ(one_stats.fire_steps, st.fire_steps) << t << " threads";
+      EXPECT_EQ(one_stats.list_builds, st.list_builds) << t << " threads";
     }
   }
 }

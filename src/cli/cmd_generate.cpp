@@ -69,7 +69,7 @@ void register_generate_commands(CLI::App& app) {
   auto* sweeps = sub->add_option("--sweeps", o->spec.sweeps, "with --equilibrate: Monte Carlo sweeps (N trials each), 1 to 100000")
                      ->default_val(kDefaultEquilibrationSweeps);
   sub->add_option("--threads", o->spec.threads,
-                  "excluded-volume placement: threads of sequential addition and of --equilibrate's Monte Carlo, 0 = all cores (OMP_NUM_THREADS when set), or 1 to " +
+                  "excluded-volume placement: threads of sequential addition, growth + FIRE and --equilibrate's Monte Carlo, 0 = all cores (OMP_NUM_THREADS when set), or 1 to " +
                       std::to_string(kMaxThreads) + "; the packing is the same for any number")
       ->default_val(0);
   sub->add_option("--seed", o->spec.seed, "random seed")->default_val(1)->check(CLI::NonNegativeNumber);

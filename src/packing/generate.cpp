@@ -111,7 +111,9 @@ void place_excluded(const PackingSpec& s, double rcp, detail::GenRng& rng, Packi
   }
   Progress progress2(s.progress, "growth + FIRE relaxation");
   detail::RelaxStats st;
-  if (!detail::grow_and_relax(s.d, s.boundary, p.box, p.radii, scale0, p.positions, progress2, st)) {
+  const int relax_threads = static_cast<int>(std::clamp<std::size_t>(s.n / detail::kRelaxMinSpheresPerThread, 1,
+                                                                      static_cast<std::size_t>(resolve_threads(s.threads))));
+  if (!detail::grow_and_relax(s.d, s.boundary, p.box, p.radii, scale0, relax_threads, p.positions, progress2, st)) {
     const double reached = s.nu * std::pow(std::pow(detail::kGrowthStep, st.growth_steps) * scale0, s.d);
     throw InputError("nu", unreachable(s, rcp, "the growth did not converge within its FIRE step budget (reached nu ≈ " +
                                                    brief(std::round(std::min(reached, s.nu) * 1e4) / 1e4) + " after " +

@@ -37,7 +37,7 @@ struct PackingSpec {
   std::uint64_t seed = 1;
   bool equilibrate = false;  // excluded only: hard-sphere equilibration after placement
   int sweeps = kDefaultEquilibrationSweeps;  // equilibrate: Monte Carlo sweeps (n trials each)
-  int threads = 0;           // excluded: threads of sequential addition and equilibration (grid/threads.hpp);
+  int threads = 0;           // excluded: threads of sequential addition, growth + FIRE and equilibration (grid/threads.hpp);
                              // the packing does not depend on it
   bool progress = true;      // progress lines on stderr for long generations
 };

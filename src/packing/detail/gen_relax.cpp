@@ -5,12 +5,27 @@
 // step suits all. Contacts come from a Verlet list (skin kSkin r_i) built with
 // the HGrid and rebuilt only when a sphere has moved or grown through its skin;
 // its partner lists are sorted, so the packing does not depend on the grid.
+//
+// Threads: the spheres (in spatial order) are cut into one range per thread,
+// balanced by list pairs. A sphere's force is the sum, in canonical order, of
+// its pairs (i, p) in increasing i, then its pairs (p, j) in increasing j,
+// then the walls. A range's thread first adds, for its spheres, the pairs
+// reaching in from earlier ranges (computed again there: a few per cent near
+// the range's edge), then runs its rows as one thread does, adding to a
+// partner's force only if the partner is in the range. Every sphere sees the
+// same additions in the same order, so the packing does not depend on the
+// number of threads. The FIRE sums (power, norms) stay one ordered loop.
 #include "packing/detail/gen_relax.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <numeric>
+
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 
 #include "packing/detail/gen_pairs.hpp"
 
@@ -26,8 +41,9 @@ class Relaxer {
  public:
   using Vec = std::array<double, D>;
 
-  Relaxer(const Extent<D>& box, std::vector<double> radii, std::vector<Vec> x)
-      : box_(box), r_(std::move(radii)), x_(std::move(x)), v_(r_.size()), f_(r_.size()), xref_(r_.size()) {}
+  Relaxer(const Extent<D>& box, std::vector<double> radii, std::vector<Vec> x, int threads)
+      : box_(box), r_(std::move(radii)), x_(std::move(x)), v_(r_.size()), f_(r_.size()), xref_(r_.size()),
+        threads_(std::max(1, threads)) {}
 
   /// Relaxes at scale lambda until the largest relative overlap is below tol.
   /// Returns the FIRE steps used, or budget + 1 if it ran out.
@@ -54,8 +70,9 @@ class Relaxer {
         }
       if (P > 0) {
         const double mix = ff > 0 ? alpha * std::sqrt(vv / ff) : 0.0;
-        for (std::size_t i = 0; i < r_.size(); ++i)
+        each_sphere([&](std::size_t i) {
           for (int k = 0; k < D; ++k) v_[i][k] = (1 - alpha) * v_[i][k] + mix * f_[i][k];
+        });
         if (++positive > kFireNmin) {
           dt = std::min(dt * kFireFinc, dt_max);
           alpha *= kFireFalpha;
@@ -66,13 +83,14 @@ class Relaxer {
         alpha = kFireAlpha0;
         positive = 0;
       }
-      for (std::size_t i = 0; i < r_.size(); ++i)
+      each_sphere([&](std::size_t i) {
         for (int k = 0; k < D; ++k) {
           v_[i][k] += dt * f_[i][k];
           double y = x_[i][k] + dt * v_[i][k];
           if constexpr (B == Boundary::periodic) y = wrap(y, box_[k]);
           x_[i][k] = y;
         }
+      });
     }
   }
 
@@ -80,20 +98,42 @@ class Relaxer {
   const std::vector<Vec>& positions() const { return x_; }
 
  private:
+  /// fn(i) for every sphere, on the threads when there are several.
+  template <class Fn>
+  void each_sphere(Fn&& fn) const {
+    const auto n = static_cast<std::int64_t>(r_.size());
+#if defined(_OPENMP)
+    if (threads_ > 1) {
+#pragma omp parallel for num_threads(threads_) schedule(static)
+      for (std::int64_t i = 0; i < n; ++i) fn(static_cast<std::size_t>(i));
+      return;
+    }
+#endif
+    for (std::int64_t i = 0; i < n; ++i) fn(static_cast<std::size_t>(i));
+  }
+
   bool needs_rebuild() const {
     if (start_.empty()) return true;
-    for (std::size_t i = 0; i < r_.size(); ++i) {
+    const auto moved = [this](std::size_t i) {
       const double margin = built_lambda_ * r_[i] * (1 + kSkin) - lambda_ * r_[i];
-      if (margin <= 0) return true;
       double d2 = 0;
       for (int k = 0; k < D; ++k) {
         double dx = x_[i][k] - xref_[i][k];
         if constexpr (B == Boundary::periodic) dx = min_image(dx, box_[k]);
         d2 += dx * dx;
       }
-      if (d2 >= margin * margin) return true;
+      return margin <= 0 || d2 >= margin * margin;
+    };
+    if (threads_ == 1) {
+      for (std::size_t i = 0; i < r_.size(); ++i)
+        if (moved(i)) return true;
+      return false;
     }
-    return false;
+    std::atomic<bool> any{false};
+    each_sphere([&](std::size_t i) {
+      if (moved(i)) any.store(true, std::memory_order_relaxed);
+    });
+    return any.load();
   }
 
   void build_list() {
@@ -121,47 +161,97 @@ class Relaxer {
     double kmax = 0;
     for (std::size_t i = 0; i < n; ++i) kmax = std::max(kmax, k[i] + (B == Boundary::walls ? D / (lambda_ * lambda_ * r_[i] * r_[i]) : 0.0));
     dt_max_ = kmax > 0 ? 1.0 / std::sqrt(kmax) : 1.0;
+    cut_ranges();
   }
 
-  /// Forces; returns the largest relative overlap.
-  double forces() {
-    for (auto& f : f_) f.fill(0.0);
-    double worst = 0;
+  /// One range of spheres per thread, cut where the list pairs before the cut
+  /// reach the thread's share; then, per sphere p, the pairs (i, p) whose i
+  /// lies in an earlier range, in increasing i (cross_i_ from
+  /// cross_start_[p]).
+  void cut_ranges() {
     const std::size_t n = r_.size();
-    for (std::size_t i = 0; i < n; ++i) {
+    const auto T = static_cast<std::size_t>(threads_);
+    range_.assign(T + 1, static_cast<std::uint32_t>(n));
+    range_[0] = 0;
+    for (std::size_t b = 1; b < T; ++b) {
+      const std::uint64_t share = static_cast<std::uint64_t>(start_[n]) * b / T;
+      range_[b] = static_cast<std::uint32_t>(std::upper_bound(start_.begin(), start_.end(), share) - start_.begin() - 1);
+      range_[b] = std::max(range_[b], range_[b - 1]);
+    }
+    cross_start_.assign(n + 1, 0);
+    cross_i_.clear();
+    if (T == 1) return;
+    for (std::size_t b = 0; b < T; ++b)
+      for (std::uint32_t i = range_[b]; i < range_[b + 1]; ++i)
+        for (std::uint32_t m = start_[i]; m < start_[i + 1]; ++m)
+          if (nbr_[m] >= range_[b + 1]) ++cross_start_[nbr_[m] + 1];
+    for (std::size_t p = 0; p < n; ++p) cross_start_[p + 1] += cross_start_[p];
+    cross_i_.resize(cross_start_[n]);
+    std::vector<std::uint32_t> at(cross_start_.begin(), cross_start_.end() - 1);
+    for (std::size_t b = 0; b < T; ++b)
+      for (std::uint32_t i = range_[b]; i < range_[b + 1]; ++i)
+        for (std::uint32_t m = start_[i]; m < start_[i + 1]; ++m)
+          if (const std::uint32_t j = nbr_[m]; j >= range_[b + 1]) cross_i_[at[j]++] = i;
+  }
+
+  /// The pair (i, j), i < j, with xi = x_[i], ri = lambda_ r_[i]: false if
+  /// they do not push each other; else the force c on j (-c on i). worst:
+  /// raised to their relative overlap if they overlap.
+  bool pair_force(const Vec& xi, double ri, std::uint32_t j, Vec& c, double& worst) const {
+    const double sig = ri + lambda_ * r_[j];
+    Vec dx;
+    double d2 = 0;
+    for (int k = 0; k < D; ++k) {
+      dx[k] = x_[j][k] - xi[k];
+      if constexpr (B == Boundary::periodic) dx[k] = min_image(dx[k], box_[k]);
+      d2 += dx[k] * dx[k];
+    }
+    if (d2 >= sig * sig) return false;
+    const double dist = std::sqrt(d2);
+    const double rel = (sig - dist) / sig;
+    worst = std::max(worst, rel);
+    if (dist == 0) return false;
+    const double mag = rel / sig / dist;  // force (delta/sigma)/sigma along the unit vector
+    for (int k = 0; k < D; ++k) c[k] = mag * dx[k];
+    return true;
+  }
+
+  /// Forces on the spheres of [lo, hi) (see the top of the file); returns
+  /// the largest relative overlap among the pairs of their rows and walls.
+  template <bool kRanges>
+  double range_forces(std::uint32_t lo, std::uint32_t hi) {
+    Vec c;
+    double worst = 0, unused = 0;  // a cross pair's overlap counts in its row
+    for (std::uint32_t p = lo; p < hi; ++p) {
+      f_[p].fill(0.0);
+      if constexpr (kRanges) {
+        for (std::uint32_t x = cross_start_[p]; x < cross_start_[p + 1]; ++x) {
+          const std::uint32_t i = cross_i_[x];
+          if (pair_force(x_[i], lambda_ * r_[i], p, c, unused))
+            for (int k = 0; k < D; ++k) f_[p][k] += c[k];
+        }
+      }
+    }
+    for (std::uint32_t i = lo; i < hi; ++i) {
       const Vec xi = x_[i];
       const double ri = lambda_ * r_[i];
       for (std::uint32_t m = start_[i]; m < start_[i + 1]; ++m) {
         const std::uint32_t j = nbr_[m];
-        const double sig = ri + lambda_ * r_[j];
-        Vec dx;
-        double d2 = 0;
-        for (int k = 0; k < D; ++k) {
-          dx[k] = x_[j][k] - xi[k];
-          if constexpr (B == Boundary::periodic) dx[k] = min_image(dx[k], box_[k]);
-          d2 += dx[k] * dx[k];
-        }
-        if (d2 >= sig * sig) continue;
-        const double dist = std::sqrt(d2);
-        const double rel = (sig - dist) / sig;
-        worst = std::max(worst, rel);
-        if (dist == 0) continue;
-        const double mag = rel / sig / dist;  // force (delta/sigma)/sigma along the unit vector
-        for (int k = 0; k < D; ++k) {
-          f_[i][k] -= mag * dx[k];
-          f_[j][k] += mag * dx[k];
-        }
+        if (!pair_force(xi, ri, j, c, worst)) continue;
+        for (int k = 0; k < D; ++k) f_[i][k] -= c[k];
+        if (!kRanges || j < hi)
+          for (int k = 0; k < D; ++k) f_[j][k] += c[k];
       }
       if constexpr (B == Boundary::walls) {
         for (int k = 0; k < D; ++k) {
-          const double lo = ri - xi[k], hi = xi[k] + ri - box_[k];
-          if (lo > 0) {
-            worst = std::max(worst, lo / ri);
-            f_[i][k] += lo / (ri * ri);
+          const double lo_gap = ri - xi[k], hi_gap = xi[k] + ri - box_[k];
+          if (lo_gap > 0) {
+            worst = std::max(worst, lo_gap / ri);
+            f_[i][k] += lo_gap / (ri * ri);
           }
-          if (hi > 0) {
-            worst = std::max(worst, hi / ri);
-            f_[i][k] -= hi / (ri * ri);
+          if (hi_gap > 0) {
+            worst = std::max(worst, hi_gap / ri);
+            f_[i][k] -= hi_gap / (ri * ri);
           }
         }
       }
@@ -169,17 +259,31 @@ class Relaxer {
     return worst;
   }
 
+  /// Forces; returns the largest relative overlap.
+  double forces() {
+    const int T = threads_;
+    if (T == 1) return range_forces<false>(0, static_cast<std::uint32_t>(r_.size()));
+    double worst = 0;
+#if defined(_OPENMP)
+#pragma omp parallel for num_threads(T) schedule(static, 1) reduction(max : worst)
+#endif
+    for (int b = 0; b < T; ++b) worst = std::max(worst, range_forces<true>(range_[b], range_[b + 1]));
+    return worst;
+  }
+
   Extent<D> box_;
   std::vector<double> r_;
   std::vector<Vec> x_, v_, f_, xref_;
   std::vector<std::uint32_t> start_, nbr_;
+  int threads_ = 1;
+  std::vector<std::uint32_t> range_, cross_start_, cross_i_;
   double lambda_ = 1, built_lambda_ = 1, dt_max_ = 1;
   int builds_ = 0;
 };
 
 template <int D, Boundary B>
-bool run(const std::array<double, 3>& box3, const std::vector<double>& radii, double scale0, std::vector<double>& pos,
-         Progress& progress, RelaxStats& st) {
+bool run(const std::array<double, 3>& box3, const std::vector<double>& radii, double scale0, int threads,
+         std::vector<double>& pos, Progress& progress, RelaxStats& st) {
   const std::size_t n = radii.size();
   Extent<D> box;
   for (int k = 0; k < D; ++k) box[k] = box3[k];
@@ -203,7 +307,7 @@ bool run(const std::array<double, 3>& box3, const std::vector<double>& radii, do
     r[m] = radii[perm[m]];
     for (int k = 0; k < D; ++k) x[m][k] = pos[perm[m] * D + k];
   }
-  Relaxer<D, B> relaxer(box, std::move(r), std::move(x));
+  Relaxer<D, B> relaxer(box, std::move(r), std::move(x), threads);
   double lambda = scale0;
   const double total = std::log(1 / scale0);
   bool ok = true;
@@ -237,12 +341,12 @@ bool run(const std::array<double, 3>& box3, const std::vector<double>& radii, do
 }  // namespace
 
 bool grow_and_relax(int d, Boundary b, const std::array<double, 3>& box, const std::vector<double>& radii,
-                    double scale0, std::vector<double>& pos, Progress& progress, RelaxStats& stats) {
+                    double scale0, int threads, std::vector<double>& pos, Progress& progress, RelaxStats& stats) {
   if (d == 2)
-    return b == Boundary::walls ? run<2, Boundary::walls>(box, radii, scale0, pos, progress, stats)
-                                : run<2, Boundary::periodic>(box, radii, scale0, pos, progress, stats);
-  return b == Boundary::walls ? run<3, Boundary::walls>(box, radii, scale0, pos, progress, stats)
-                              : run<3, Boundary::periodic>(box, radii, scale0, pos, progress, stats);
+    return b == Boundary::walls ? run<2, Boundary::walls>(box, radii, scale0, threads, pos, progress, stats)
+                                : run<2, Boundary::periodic>(box, radii, scale0, threads, pos, progress, stats);
+  return b == Boundary::walls ? run<3, Boundary::walls>(box, radii, scale0, threads, pos, progress, stats)
+                              : run<3, Boundary::periodic>(box, radii, scale0, threads, pos, progress, stats);
 }
 
 }  // namespace hgrid::detail

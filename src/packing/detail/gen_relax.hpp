@@ -2,6 +2,7 @@
 // reaches packing fractions where random sequential addition stalls.
 #pragma once
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -21,6 +22,9 @@ inline constexpr std::uint64_t kFireStepsPerGrowth = 20000;
 inline constexpr std::uint64_t kFireStepsTotal = 400000;
 /// Verlet skin of the neighbour list, relative to each radius.
 inline constexpr double kSkin = 0.25;
+/// Spheres per thread below which generate_packing relaxes on fewer threads
+/// (a FIRE step on a few thousand spheres is too short to share).
+inline constexpr std::size_t kRelaxMinSpheresPerThread = 8192;
 
 struct RelaxStats {
   std::uint64_t fire_steps = 0;
@@ -34,8 +38,9 @@ struct RelaxStats {
 /// relaxing with FIRE (Bitzek et al., Phys. Rev. Lett. 97, 170201 (2006);
 /// unit masses, unit stiffness) after each step. With walls, spheres also
 /// feel a harmonic wall. Returns false (stats say how far it got) when a step
-/// budget runs out.
+/// budget runs out. The forces run on up to `threads` threads; the result
+/// does not depend on their number.
 bool grow_and_relax(int d, Boundary b, const std::array<double, 3>& box, const std::vector<double>& radii,
-                    double scale0, std::vector<double>& pos, Progress& progress, RelaxStats& stats);
+                    double scale0, int threads, std::vector<double>& pos, Progress& progress, RelaxStats& stats);
 
 }  // namespace hgrid::detail
