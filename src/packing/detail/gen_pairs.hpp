@@ -7,8 +7,8 @@
 #include <span>
 #include <vector>
 
-#include "grid/pair_keys.hpp"
 #include "grid/hgrid.hpp"
+#include "grid/pair_sum.hpp"
 
 namespace hgrid::detail {
 
@@ -39,22 +39,33 @@ void for_each_overlapping(std::span<const Sphere<D>> spheres, const Extent<D>& b
 /// Neighbour lists in compressed rows: the partners j > i of sphere i (pairs
 /// closer than r_i + r_j) are nbr[start[i]] .. nbr[start[i + 1] - 1], in
 /// ascending order. The grid finds pairs in an order of its own, which
-/// changes with its cell sizes and its traversal; lists in canonical order
-/// make every sum over them (forces in the FIRE relaxation) a function of the
-/// spheres only.
+/// changes with its cell sizes, its traversal and its threads; lists in
+/// canonical order make every sum over them (forces in the FIRE relaxation) a
+/// function of the spheres only. The search and the sort run on `threads`.
 template <int D, Boundary B>
 void neighbour_lists(std::span<const Sphere<D>> spheres, const Extent<D>& box, std::vector<std::uint32_t>& start,
-                     std::vector<std::uint32_t>& nbr) {
+                     std::vector<std::uint32_t>& nbr, int threads = 1) {
   const std::size_t n = spheres.size();
-  const PairKeys pk(n);
-  std::vector<std::uint64_t> keys, tmp;
-  for_each_overlapping<D, B>(spheres, box, [&](std::uint32_t i, std::uint32_t j) { keys.push_back(pk.key(i, j)); });
-  pk.sort(keys, tmp);
+  const int T = std::max(1, threads);
+  PairSum ps(n);
+  std::vector<std::vector<std::uint64_t>> found(static_cast<std::size_t>(T));
+  if (n >= 2) {
+    double lo = spheres[0].r, hi = lo;
+    for (const auto& s : spheres) {
+      lo = std::min(lo, s.r);
+      hi = std::max(hi, s.r);
+    }
+    const HGrid<D, B> grid(spheres, box, GridParams{doubling_sizes(lo, hi), Search::bottom_up, T});
+    grid.template query<Search::bottom_up>(
+        [&](int t, std::uint32_t i, std::uint32_t j) { found[static_cast<std::size_t>(t)].push_back(ps.key(i, j)); });
+  }
+  ps.gather(found);
+  const std::vector<std::uint64_t>& keys = ps.keys();
   start.assign(n + 1, 0);
   nbr.resize(keys.size());
   for (std::size_t m = 0; m < keys.size(); ++m) {
-    ++start[pk.first(keys[m]) + 1];
-    nbr[m] = pk.second(keys[m]);
+    ++start[ps.first(keys[m]) + 1];
+    nbr[m] = ps.second(keys[m]);
   }
   for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
 }

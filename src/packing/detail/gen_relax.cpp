@@ -148,7 +148,7 @@ class Relaxer {
       s[i].r = lambda_ * r_[i] * (1 + kSkin);
       xref_[i] = x_[i];
     }
-    neighbour_lists<D, B>(std::span<const Sphere<D>>(s), box_, start_, nbr_);  // sorted: see there
+    neighbour_lists<D, B>(std::span<const Sphere<D>>(s), box_, start_, nbr_, threads_);  // sorted: see there
     // Stiffest sphere: sum of its pairs' stiffness 1/sigma^2 (an upper bound).
     std::vector<double> k(n, 0.0);
     for (std::size_t i = 0; i < n; ++i)
