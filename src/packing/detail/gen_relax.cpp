@@ -52,8 +52,9 @@ class Relaxer {
     for (auto& v : v_) v.fill(0.0);
     double dt_max = dt_max_, dt = 0.1 * dt_max, alpha = kFireAlpha0;
     int positive = 0;
+    bool rebuild = needs_rebuild();
     for (std::uint64_t step = 0;; ++step) {
-      if (needs_rebuild()) {
+      if (rebuild) {
         build_list();
         dt_max = dt_max_;
         dt = std::min(dt, dt_max);
@@ -68,29 +69,19 @@ class Relaxer {
           vv += v_[i][k] * v_[i][k];
           ff += f_[i][k] * f_[i][k];
         }
-      if (P > 0) {
-        const double mix = ff > 0 ? alpha * std::sqrt(vv / ff) : 0.0;
-        each_sphere([&](std::size_t i) {
-          for (int k = 0; k < D; ++k) v_[i][k] = (1 - alpha) * v_[i][k] + mix * f_[i][k];
-        });
+      const bool uphill = !(P > 0);  // FIRE: stop (velocities to zero), else mix velocities towards the forces
+      const double keep = 1 - alpha, mix = !uphill && ff > 0 ? alpha * std::sqrt(vv / ff) : 0.0;
+      if (!uphill) {
         if (++positive > kFireNmin) {
           dt = std::min(dt * kFireFinc, dt_max);
           alpha *= kFireFalpha;
         }
       } else {
-        for (auto& v : v_) v.fill(0.0);
         dt *= kFireFdec;
         alpha = kFireAlpha0;
         positive = 0;
       }
-      each_sphere([&](std::size_t i) {
-        for (int k = 0; k < D; ++k) {
-          v_[i][k] += dt * f_[i][k];
-          double y = x_[i][k] + dt * v_[i][k];
-          if constexpr (B == Boundary::periodic) y = wrap(y, box_[k]);
-          x_[i][k] = y;
-        }
-      });
+      rebuild = advance(uphill, keep, mix, dt);
     }
   }
 
@@ -112,28 +103,42 @@ class Relaxer {
     for (std::int64_t i = 0; i < n; ++i) fn(static_cast<std::size_t>(i));
   }
 
+  /// Has sphere i moved or grown through its skin since the list was built?
+  bool moved(std::size_t i) const {
+    const double margin = built_lambda_ * r_[i] * (1 + kSkin) - lambda_ * r_[i];
+    double d2 = 0;
+    for (int k = 0; k < D; ++k) {
+      double dx = x_[i][k] - xref_[i][k];
+      if constexpr (B == Boundary::periodic) dx = min_image(dx, box_[k]);
+      d2 += dx * dx;
+    }
+    return margin <= 0 || d2 >= margin * margin;
+  }
+
   bool needs_rebuild() const {
     if (start_.empty()) return true;
-    const auto moved = [this](std::size_t i) {
-      const double margin = built_lambda_ * r_[i] * (1 + kSkin) - lambda_ * r_[i];
-      double d2 = 0;
-      for (int k = 0; k < D; ++k) {
-        double dx = x_[i][k] - xref_[i][k];
-        if constexpr (B == Boundary::periodic) dx = min_image(dx, box_[k]);
-        d2 += dx * dx;
-      }
-      return margin <= 0 || d2 >= margin * margin;
-    };
-    if (threads_ == 1) {
-      for (std::size_t i = 0; i < r_.size(); ++i)
-        if (moved(i)) return true;
-      return false;
-    }
+    for (std::size_t i = 0; i < r_.size(); ++i)
+      if (moved(i)) return true;
+    return false;
+  }
+
+  /// One FIRE move of every sphere (velocities zeroed if uphill, else
+  /// keep v + mix f; then v += dt f, x += dt v): one pass, on the threads.
+  /// Returns whether the list must be rebuilt before the next forces.
+  bool advance(bool uphill, double keep, double mix, double dt) {
     std::atomic<bool> any{false};
     each_sphere([&](std::size_t i) {
+      for (int k = 0; k < D; ++k) {
+        double v = uphill ? 0.0 : keep * v_[i][k] + mix * f_[i][k];
+        v += dt * f_[i][k];
+        v_[i][k] = v;
+        double y = x_[i][k] + dt * v;
+        if constexpr (B == Boundary::periodic) y = wrap(y, box_[k]);
+        x_[i][k] = y;
+      }
       if (moved(i)) any.store(true, std::memory_order_relaxed);
     });
-    return any.load();
+    return any.load(std::memory_order_relaxed);
   }
 
   void build_list() {
