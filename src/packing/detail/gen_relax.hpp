@@ -38,8 +38,8 @@ struct RelaxStats {
 /// relaxing with FIRE (Bitzek et al., Phys. Rev. Lett. 97, 170201 (2006);
 /// unit masses, unit stiffness) after each step. With walls, spheres also
 /// feel a harmonic wall. Returns false (stats say how far it got) when a step
-/// budget runs out. The forces run on up to `threads` threads; the result
-/// does not depend on their number.
+/// budget runs out. Lists, forces and moves run on `threads` threads; the
+/// result does not depend on their number.
 bool grow_and_relax(int d, Boundary b, const std::array<double, 3>& box, const std::vector<double>& radii,
                     double scale0, int threads, std::vector<double>& pos, Progress& progress, RelaxStats& stats);
 
