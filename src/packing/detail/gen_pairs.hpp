@@ -21,18 +21,19 @@ inline std::vector<double> doubling_sizes(double rmin, double rmax) {
   return s;
 }
 
-/// Calls f(i, j) for every pair of spheres closer than r_i + r_j. Bottom-Up:
-/// each sphere scans at most 3^d cells per larger level, whatever the size
-/// ratio (Top-Down would scan (2 + 2r/s)^d small cells per big sphere).
+/// Calls f(i, j) for every pair of spheres closer than r_i + r_j, on
+/// `threads` threads (f as a grid query's callback: grid/threads.hpp).
+/// Bottom-Up: each sphere scans at most 3^d cells per larger level, whatever
+/// the size ratio (Top-Down would scan (2 + 2r/s)^d small cells per big sphere).
 template <int D, Boundary B, class F>
-void for_each_overlapping(std::span<const Sphere<D>> spheres, const Extent<D>& box, F&& f) {
+void for_each_overlapping(std::span<const Sphere<D>> spheres, const Extent<D>& box, F&& f, int threads = 1) {
   if (spheres.size() < 2) return;
   double lo = spheres[0].r, hi = lo;
   for (const auto& s : spheres) {
     lo = std::min(lo, s.r);
     hi = std::max(hi, s.r);
   }
-  const HGrid<D, B> grid(spheres, box, GridParams{doubling_sizes(lo, hi), Search::bottom_up});
+  const HGrid<D, B> grid(spheres, box, GridParams{doubling_sizes(lo, hi), Search::bottom_up, threads});
   grid.template query<Search::bottom_up>(f);
 }
 
@@ -49,16 +50,9 @@ void neighbour_lists(std::span<const Sphere<D>> spheres, const Extent<D>& box, s
   const int T = std::max(1, threads);
   PairSum ps(n);
   std::vector<std::vector<std::uint64_t>> found(static_cast<std::size_t>(T));
-  if (n >= 2) {
-    double lo = spheres[0].r, hi = lo;
-    for (const auto& s : spheres) {
-      lo = std::min(lo, s.r);
-      hi = std::max(hi, s.r);
-    }
-    const HGrid<D, B> grid(spheres, box, GridParams{doubling_sizes(lo, hi), Search::bottom_up, T});
-    grid.template query<Search::bottom_up>(
-        [&](int t, std::uint32_t i, std::uint32_t j) { found[static_cast<std::size_t>(t)].push_back(ps.key(i, j)); });
-  }
+  for_each_overlapping<D, B>(
+      spheres, box,
+      [&](int t, std::uint32_t i, std::uint32_t j) { found[static_cast<std::size_t>(t)].push_back(ps.key(i, j)); }, T);
   ps.gather(found);
   const std::vector<std::uint64_t>& keys = ps.keys();
   start.assign(n + 1, 0);
