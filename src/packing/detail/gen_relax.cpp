@@ -23,10 +23,6 @@
 #include <cstdio>
 #include <numeric>
 
-#if defined(_OPENMP)
-#include <omp.h>
-#endif
-
 #include "packing/detail/gen_pairs.hpp"
 
 namespace hgrid::detail {
