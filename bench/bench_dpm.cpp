@@ -17,17 +17,8 @@ constexpr std::uint64_t kSeed = 7;
 
 // A packing generated once (seed kSeed, no progress lines).
 Packing make_packing(int d, std::size_t n, double nu, double alpha, double omega, Boundary b, Placement placement) {
-  PackingSpec s;
-  s.d = d;
-  s.n = n;
-  s.nu = nu;
-  s.alpha = alpha;
-  s.omega = omega;
-  s.boundary = b;
-  s.placement = placement;
-  s.seed = kSeed;
-  s.progress = false;
-  return generate_packing(s);
+  return generate_packing({.d = d, .n = n, .nu = nu, .alpha = alpha, .omega = omega, .boundary = b,
+                           .placement = placement, .seed = kSeed, .progress = false});
 }
 
 const Packing& initial() {  // excluded volume: a DEM state has no large overlaps
