@@ -11,28 +11,16 @@
 # Usage: plots/wall_edges.sh   (~1 min on 2 cores; needs python3 with numpy)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-hgrid=${HGRID:-build/hgrid}
-py=${PYTHON:-python3}
-if ! "$py" -c 'import numpy' >/dev/null 2>&1; then
-  echo "plots/wall_edges.sh: $py has no numpy (apt-get install python3-numpy, or PYTHON=/usr/bin/python3); skipped" >&2
-  exit 0
-fi
-mkdir -p results results/packings
+script=plots/wall_edges.sh
 csv=results/wall_edges.csv
-tmp=$csv.tmp.$$
-work=$(mktemp -d)
-trap 'rm -rf "$tmp" "$work"' EXIT
+. plots/lib/packing_stats.sh
 {
   echo "# walled 3D excluded-volume packings (alpha = -3, omega = 10, nu = 0.6, seed 1): share of each size class near one wall and near two (an edge), against the product of the per-axis shares"
-  echo "# git_hash=$(git rev-parse --short=12 HEAD 2>/dev/null || echo unknown) machine=$(grep -m1 'model name' /proc/cpuinfo 2>/dev/null | cut -d: -f2 | sed 's/^ //' || echo unknown)"
+  stamp
   echo "n,sweeps,radii,particles,layer,share_per_axis,edge_measured,edge_product,edge_ratio"
   for point in "3000 0" "3000 10000" "30000 0"; do
     read -r n sweeps <<<"$point"
-    eq=()
-    [ "$sweeps" -gt 0 ] && eq=(--equilibrate --sweeps "$sweeps")
-    file=$("$hgrid" generate --d 3 --n "$n" --nu 0.6 --alpha -3 --omega 10 --placement excluded --boundary walls \
-      --seed 1 "${eq[@]}" --quiet --cache results/packings | tail -n 1 | awk '{print $NF}')
-    "$hgrid" export "$file" --xyz "$work/p.xyz" >/dev/null
+    xyz walls "$n" "$sweeps" "$work/p.xyz" >/dev/null
     "$py" - "$work/p.xyz" "$n" "$sweeps" <<'EOF'
 import sys
 import numpy as np

@@ -1,0 +1,81 @@
+#!/usr/bin/env python3
+"""The Kirkwood product near a wall, integrated exactly (docs/MODEL.md section 8,
+walls). Not run by CI; run by hand (needs python3-numpy, ~1 min):
+
+    python3 tests/independent/wall_product.py
+
+The excluded-volume model puts a walled window's Percus-Yevick excess in
+proportion to its random-centre count: excess(x) = E_bulk * R(x) / R_bulk.
+Here the same product form (partner density rho(1 + h_W(z)) times the bulk
+h(r)) is integrated over the clipped own-level window of a level-1 particle
+at height x above one wall, by Monte Carlo, for the Fig. 12 alpha = -3,
+omega = 10, nu = 0.6 mixture at N = 3e4 (s_1 = 3.6467). It prints, per x,
+the random count R(x), the exact excess and the model's proportional one.
+"""
+import numpy as np
+from excluded_pins import hhat
+
+alpha, omega, nu = -3.0, 10.0, 0.6
+s1 = 3.6467469369631162
+B = 30
+edges = np.geomspace(1, omega, B + 1)
+
+
+def moment(p, a, b):
+    e = alpha + p + 1
+    return (b ** e - a ** e) / e if abs(e) > 1e-12 else np.log(b / a)
+
+
+P = np.array([moment(0, edges[i], edges[i + 1]) for i in range(B)])
+sig = 2 * (np.array([moment(3, edges[i], edges[i + 1]) for i in range(B)]) / P) ** (1 / 3)
+P /= P.sum()
+rho = nu / (np.pi / 6 * np.sum(P * sig ** 3)) * P
+lev1 = np.where(sig <= s1)[0]
+sw = 20 * sig.max()                     # the wall: a sphere 20 largest diameters wide, negligible density
+rho2 = np.append(rho, 1e-12 * 6 / (np.pi * sw ** 3))
+sig2 = np.append(sig, sw)
+reach = sw / 2 + 4 * sig.max()
+dk = 0.25 * np.pi / reach
+k = np.arange(1, int(30 / sig.min() / dk)) * dk
+Yw = np.empty(len(k))
+Yb = np.empty(len(k))
+for i0 in range(0, len(k), 500):
+    H = hhat(k[i0:i0 + 500], rho2, sig2)
+    Yw[i0:i0 + 500] = (H[:, lev1, B] * P[lev1]).sum(1) / P[lev1].sum()  # level 1's wall correlation
+    Yb[i0:i0 + 500] = (H[:, 0, lev1] * rho[lev1]).sum(1)                 # smallest class against level 1
+
+
+def radial(Y, r):
+    return (np.sin(np.outer(r, k)) @ (k * Y)) * dk / (2 * np.pi ** 2 * r)
+
+
+zz = np.arange(0.0, 30, 0.05)
+hW = radial(Yw, sw / 2 + zz)
+rr = np.arange(0.025, 12, 0.05)
+Yr = radial(Yb, rr)
+rhoL = rho[lev1].sum()
+rng = np.random.default_rng(1)
+M = 400000
+
+
+def window(x):
+    """Random count and product-form excess of a particle at height x: partners in
+    level-1 cells i-1..i+1 (clipped at the wall) on that axis, 3 x 3 across."""
+    i = int(np.floor(x / s1))
+    lo, hi = max(0, i - 1) * s1, (i + 2) * s1
+    t0 = rng.uniform(0, s1, (M, 2))
+    ty = rng.uniform(-s1, 2 * s1, (M, 2))
+    yz = rng.uniform(lo, hi, M)
+    vol = (3 * s1) ** 2 * (hi - lo)
+    d = np.sqrt(((ty - t0) ** 2).sum(1) + (yz - x) ** 2)
+    p = np.where(yz < 1.1, 0.0, 1 + np.interp(yz, zz, hW, right=0))
+    h = np.where(d < 2.05, -rhoL, np.interp(d, rr, Yr, left=-rhoL, right=0.0))
+    return rhoL * np.mean(p) * vol, np.mean(p * h) * vol
+
+
+Rb, Eb = window(60.0)
+print(f"bulk: random {Rb:.3f}, excess {Eb:.3f}")
+print("x, random, excess (product, exact), excess (model: proportional), ratio")
+for x in [1.1, 1.3, 1.6, 2.0, 2.5, 3.0, 3.5, 4.5, 5.5, 6.5, 8.0, 10.0]:
+    R, E = window(x)
+    print(f"{x:.1f}, {R:.3f}, {E:.3f}, {Eb * R / Rb:.3f}, {E / (Eb * R / Rb):.3f}")
