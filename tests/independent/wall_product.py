@@ -11,9 +11,11 @@ h(r)) is integrated over the clipped own-level window of a level-1 particle
 at height x above one wall, by Monte Carlo, for the Fig. 12 alpha = -3,
 omega = 10, nu = 0.6 mixture at N = 3e4 (s_1 = 3.6467). It prints, per x,
 the random count R(x), the exact excess and the model's proportional one.
+Then the bulk level-1 own-level excess per random pair at lower packing
+fractions (what a local-density approximation near the wall would use).
 """
 import numpy as np
-from excluded_pins import hhat
+from excluded_pins import hhat, window_ft
 
 alpha, omega, nu = -3.0, 10.0, 0.6
 s1 = 3.6467469369631162
@@ -79,3 +81,13 @@ print("x, random, excess (product, exact), excess (model: proportional), ratio")
 for x in [1.1, 1.3, 1.6, 2.0, 2.5, 3.0, 3.5, 4.5, 5.5, 6.5, 8.0, 10.0]:
     R, E = window(x)
     print(f"{x:.1f}, {R:.3f}, {E:.3f}, {Eb * R / Rb:.3f}, {E / (Eb * R / Rb):.3f}")
+
+print("nu, level-1 own-level excess per random pair (smallest class, bulk)")
+c = s = s1
+kw = np.arange(1, int(30 / sig.min() / (0.5 * np.pi / (np.sqrt(3) * 2 * s1)))) * (0.5 * np.pi / (np.sqrt(3) * 2 * s1))
+Wk = window_ft(kw, c, s)
+for nu_l in [0.6, 0.5, 0.45, 0.3]:
+    rho_l = nu_l / (np.pi / 6 * np.sum(P * sig ** 3)) * P
+    Y = (hhat(kw, rho_l, sig)[:, 0, lev1] * rho_l[lev1]).sum(1)
+    E = np.sum(kw ** 2 * Y * Wk) * (kw[1] - kw[0]) / (2 * np.pi ** 2)
+    print(f"{nu_l:.2f}, {E / (rho_l[lev1].sum() * (2 * c + s) ** 3):.3f}")
