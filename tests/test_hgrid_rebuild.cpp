@@ -17,15 +17,23 @@
 // forms (nothrow, aligned) end in these or in malloc / free; under
 // AddressSanitizer, which brings its own forms of all of them, the count is
 // left out (replacing only these would mix its allocator with free).
+// GCC says AddressSanitizer by __SANITIZE_ADDRESS__, clang by __has_feature.
+#if defined(__SANITIZE_ADDRESS__)
+#define HGRID_TEST_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define HGRID_TEST_ASAN 1
+#endif
+#endif
 namespace {
 std::atomic<std::size_t> g_allocations{0};
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(HGRID_TEST_ASAN)
 constexpr bool kCountsAllocations = false;
 #else
 constexpr bool kCountsAllocations = true;
 #endif
 }  // namespace
-#if !defined(__SANITIZE_ADDRESS__)
+#if !defined(HGRID_TEST_ASAN)
 // GCC flags free() on a pointer from operator new once it inlines both;
 // here both sides are malloc/free, so the pair matches.
 #pragma GCC diagnostic push
