@@ -10,11 +10,12 @@
 # would give with the packing's own one-particle profiles (the product of
 # the three axes' measured cell occupancies). Pairs are split into those with
 # a particle in a cell touching a wall and the rest (interior; periodic
-# boxes: cells of side s_1 without the wrap-around pairs, a ratio all the same). The ratio
-# measured / independent is 1 + the pair excess that the packing carries.
+# boxes: cells of side s_1 without the wrap-around pairs, a ratio all the
+# same). The ratio measured / independent is 1 + the pair excess that the
+# packing carries.
 # Writes results/wall_pairs.csv and prints a Markdown table.
-# Usage: plots/wall_pairs.sh   (~2 min on 2 cores once the packings are
-# cached; generating the two N = 3e4 equilibrated ones takes ~6 min more;
+# Usage: plots/wall_pairs.sh   (~10 s once the packings are cached;
+# generating the two N = 3e4 equilibrated ones takes ~6 min more on 2 cores;
 # needs python3 with numpy)
 set -euo pipefail
 cd "$(dirname "$0")/.."
