@@ -2,10 +2,10 @@
 # with numpy (plots/wall_edges.sh, plots/wall_pairs.sh). Expects `csv` (the
 # results file) and the script's name in `script`; sets hgrid, py, tmp and
 # work (both removed on exit) and defines stamp (the CSV's provenance line)
-# and xyz BOUNDARY N SWEEPS OUT: the 3D
-# packing alpha = -3, omega = 10, nu = 0.6, seed 1 (after SWEEPS Monte Carlo
-# sweeps; generated into, or taken from, results/packings) as XYZ in OUT,
-# printing the packing file. Exits 0 with a message when numpy is missing.
+# and xyz BOUNDARY N SWEEPS OUT: the 3D packing alpha = -3, omega = 10,
+# nu = 0.6, seed 1 (after SWEEPS Monte Carlo sweeps; generated into, or taken
+# from, results/packings) as XYZ in OUT, printing the packing file. Exits 0
+# with a message when numpy is missing.
 hgrid=${HGRID:-build/hgrid}
 py=${PYTHON:-python3}
 if ! "$py" -c 'import numpy' >/dev/null 2>&1; then
