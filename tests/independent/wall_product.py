@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The Kirkwood product near a wall, integrated exactly (docs/MODEL.md section 8,
-walls). Not run by CI; run by hand (needs python3-numpy, ~1 min):
+walls). Not run by CI; run by hand (needs python3-numpy, a few seconds):
 
     python3 tests/independent/wall_product.py
 
@@ -16,39 +16,15 @@ fractions (what a local-density approximation near the wall would use).
 """
 import numpy as np
 from excluded_pins import hhat, window_ft
+from fig12_mixture import B, P, k, radial, rho, rho_w, s1, sig, sig_w, sw
 
-alpha, omega, nu = -3.0, 10.0, 0.6
-s1 = 3.6467469369631162
-B = 30
-edges = np.geomspace(1, omega, B + 1)
-
-
-def moment(p, a, b):
-    e = alpha + p + 1
-    return (b ** e - a ** e) / e if abs(e) > 1e-12 else np.log(b / a)
-
-
-P = np.array([moment(0, edges[i], edges[i + 1]) for i in range(B)])
-sig = 2 * (np.array([moment(3, edges[i], edges[i + 1]) for i in range(B)]) / P) ** (1 / 3)
-P /= P.sum()
-rho = nu / (np.pi / 6 * np.sum(P * sig ** 3)) * P
 lev1 = np.where(sig <= s1)[0]
-sw = 20 * sig.max()                     # the wall: a sphere 20 largest diameters wide, negligible density
-rho2 = np.append(rho, 1e-12 * 6 / (np.pi * sw ** 3))
-sig2 = np.append(sig, sw)
-reach = sw / 2 + 4 * sig.max()
-dk = 0.25 * np.pi / reach
-k = np.arange(1, int(30 / sig.min() / dk)) * dk
 Yw = np.empty(len(k))
 Yb = np.empty(len(k))
 for i0 in range(0, len(k), 500):
-    H = hhat(k[i0:i0 + 500], rho2, sig2)
+    H = hhat(k[i0:i0 + 500], rho_w, sig_w)
     Yw[i0:i0 + 500] = (H[:, lev1, B] * P[lev1]).sum(1) / P[lev1].sum()  # level 1's wall correlation
     Yb[i0:i0 + 500] = (H[:, 0, lev1] * rho[lev1]).sum(1)                 # smallest class against level 1
-
-
-def radial(Y, r):
-    return (np.sin(np.outer(r, k)) @ (k * Y)) * dk / (2 * np.pi ** 2 * r)
 
 
 zz = np.arange(0.0, 30, 0.05)

@@ -1,0 +1,30 @@
+"""The Fig. 12 alpha = -3, omega = 10, nu = 0.6 mixture in 30 geometric classes,
+and the wall as a Percus-Yevick component, for wall_product.py and
+wall_mediators.py (docs/MODEL.md section 8, walls)."""
+import numpy as np
+
+alpha, omega, nu = -3.0, 10.0, 0.6
+s1 = 3.6467469369631162                 # level-1 cell size at N = 3e4
+B = 30
+edges = np.geomspace(1, omega, B + 1)
+
+
+def moment(p, a, b):
+    e = alpha + p + 1
+    return (b ** e - a ** e) / e if abs(e) > 1e-12 else np.log(b / a)
+
+
+P = np.array([moment(0, edges[i], edges[i + 1]) for i in range(B)])
+sig = 2 * (np.array([moment(3, edges[i], edges[i + 1]) for i in range(B)]) / P) ** (1 / 3)
+P /= P.sum()
+rho = nu / (np.pi / 6 * np.sum(P * sig ** 3)) * P
+sw = 20 * sig.max()                     # the wall: a sphere 20 largest diameters wide, negligible density
+rho_w = np.append(rho, 1e-12 * 6 / (np.pi * sw ** 3))
+sig_w = np.append(sig, sw)
+dk = 0.25 * np.pi / (sw / 2 + 4 * sig.max())
+k = np.arange(1, int(30 / sig.min() / dk)) * dk
+
+
+def radial(Y, r):
+    """h(r) from Y(k) = hhat(k) by the sine transform on the grid k."""
+    return (np.sin(np.outer(r, k)) @ (k * Y)) * dk / (2 * np.pi ** 2 * r)
