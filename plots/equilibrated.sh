@@ -9,7 +9,8 @@
 # nu = 0.6 miss sits (docs/MODEL.md section 8, limits). Writes
 # results/equilibrated[-SCALE].csv and prints it as a Markdown table.
 # Usage: plots/equilibrated.sh [SCALE]   (default: 6 packings x 3 states, N = 10^5, ~4 min; long: up to 10^5
-#        sweeps at N = 3000-10^5, ~35 min on 2 cores; smoke: 2 x 2 at 10^4)
+#        sweeps at N = 3000-10^5, ~35 min on 2 cores; walls: walled against periodic, N = 3000,
+#        nu = 0.4-0.6, up to 10^5 sweeps, several seeds, ~40 min; smoke: 2 x 2 at 10^4)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scale=${1:-default}
@@ -18,7 +19,7 @@ if ! command -v jq >/dev/null 2>&1; then
   echo "plots/equilibrated.sh: jq is not installed (optional: apt-get install jq); skipped" >&2
   exit 0
 fi
-# alpha omega nu n boundary sweeps (comma-separated; 0 = as placed)
+# alpha omega nu n boundary sweeps (comma-separated; 0 = as placed) [seeds, comma-separated; default 1]
 points_default="
 -3 10 0.6 100000 periodic 0,20,200
 -2 10 0.6 100000 periodic 0,20,200
@@ -35,12 +36,20 @@ points_long="
 -3 10 0.4 30000 periodic 0,2000,6000
 -3 10 0.6 30000 periodic 0,2000,10000
 -2 10 0.6 30000 periodic 0,10000"
+points_walls="
+-3 10 0.4 3000 walls 0,10000,100000 1,2,3
+-3 10 0.4 3000 periodic 0,10000,100000 1,2,3
+-3 10 0.5 3000 walls 0,10000,100000 1,2
+-3 10 0.5 3000 periodic 0,10000,100000 1,2
+-3 10 0.6 3000 walls 0,10000,100000 1
+-3 10 0.6 3000 periodic 0,10000,100000 1"
 points_smoke="
 -3 10 0.6 10000 periodic 0,20
 -3 10 0.6 3000 walls 0,20"
 case "$scale" in
   smoke) points=$points_smoke ;;
   long) points=$points_long ;;
+  walls) points=$points_walls ;;
   *) points=$points_default ;;
 esac
 suffix=$([ "$scale" = default ] && echo "" || echo "-$scale")
@@ -49,29 +58,31 @@ csv=results/equilibrated$suffix.csv
 tmp=$csv.tmp.$$
 trap 'rm -f "$tmp"' EXIT
 {
-  echo "# 3D excluded-volume packings, seed 1, as placed (sweeps = 0) and after hard-sphere Monte Carlo with swaps; hgrid count with optimal Top-Down sizes (K = 0.2)"
+  echo "# 3D excluded-volume packings, seed 1 unless said, as placed (sweeps = 0) and after hard-sphere Monte Carlo with swaps; hgrid count with optimal Top-Down sizes (K = 0.2)"
   echo "# error_excluded = measured / excluded-volume model - 1 (T/N); level1_own_* = level 1's own-level narrow-phase checks"
   echo "# git_hash=$(git rev-parse --short=12 HEAD 2>/dev/null || echo unknown) machine=$(grep -m1 'model name' /proc/cpuinfo 2>/dev/null | cut -d: -f2 | sed 's/^ //' || echo unknown)"
-  echo "boundary,alpha,omega,nu,n,sweeps,swap_acceptance,T_over_N,model_T_over_N,model_excluded_T_over_N,error_paper,error_excluded,level1_own_measured,level1_own_model_excluded"
-  while read -r alpha omega nu n boundary sweeps_list; do
+  echo "boundary,alpha,omega,nu,n,sweeps,swap_acceptance,T_over_N,model_T_over_N,model_excluded_T_over_N,error_paper,error_excluded,level1_own_measured,level1_own_model_excluded,seed"
+  while read -r alpha omega nu n boundary sweeps_list seeds; do
     [ -z "$alpha" ] && continue
+    for seed in $(echo "${seeds:-1}" | tr , ' '); do
     for sweeps in ${sweeps_list//,/ }; do
-      echo "plots/equilibrated.sh: alpha=$alpha omega=$omega nu=$nu n=$n $boundary sweeps=$sweeps" >&2
+      echo "plots/equilibrated.sh: alpha=$alpha omega=$omega nu=$nu n=$n $boundary sweeps=$sweeps seed=$seed" >&2
       eq=()
       [ "$sweeps" -gt 0 ] && eq=(--equilibrate --sweeps "$sweeps")
       f=$("$hgrid" generate --n "$n" --nu "$nu" --alpha "$alpha" --omega "$omega" --boundary "$boundary" \
-            --placement excluded ${eq[@]+"${eq[@]}"} --seed 1 --cache results/packings --quiet | tail -1)
+            --placement excluded ${eq[@]+"${eq[@]}"} --seed "$seed" --cache results/packings --quiet | tail -1)
       acc=$("$hgrid" info "$f" --json | jq '.attributes.equilibration_swap_acceptance // 0')
       "$hgrid" count "$f" --cells optimal --threads 1 --json 2>/dev/null |
-        jq -r --arg a "$alpha" --arg w "$omega" --arg nu "$nu" --arg s "$sweeps" --arg acc "$acc" \
+        jq -r --arg seed "$seed" --arg a "$alpha" --arg w "$omega" --arg nu "$nu" --arg s "$sweeps" --arg acc "$acc" \
           '[.boundary, $a, $w, $nu, .n, $s, $acc, .T_over_N, .model_T_over_N, .model_excluded_T_over_N,
             (.T_over_N / .model_T_over_N - 1), (.T_over_N / .model_excluded_T_over_N - 1),
             .per_level[0].narrow_phase_checks_by_level_searched[0],
-            .per_level[0].model_excluded_narrow_phase_checks_by_level_searched[0]] | @csv' | tr -d '"'
+            .per_level[0].model_excluded_narrow_phase_checks_by_level_searched[0], $seed] | @csv' | tr -d '"'
+    done
     done
   done <<< "$points"
 } > "$tmp"
 mv "$tmp" "$csv"
-echo "| boundary | alpha | omega | nu | N | MC sweeps | swap acceptance | measured T/N | excluded-volume model | level 1 own checks, measured / model |"
-echo "|---|---|---|---|---|---|---|---|---|---|"
-grep -v '^#' "$csv" | tail -n +2 | awk -F, '{printf "| %s | %s | %s | %s | %s | %s | %.2f | %.3f | %+.2f %% | %.3f |\n", $1, $2, $3, $4, $5, $6, $7, $8, 100 * $12, $13 / $14}'
+echo "| boundary | alpha | omega | nu | N | seed | MC sweeps | swap acceptance | measured T/N | excluded-volume model | level 1 own checks, measured / model |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|"
+grep -v '^#' "$csv" | tail -n +2 | awk -F, '{printf "| %s | %s | %s | %s | %s | %s | %s | %.2f | %.3f | %+.2f %% | %.3f |\n", $1, $2, $3, $4, $5, ($15 == "" ? 1 : $15), $6, $7, $8, 100 * $12, $13 / $14}'
