@@ -64,21 +64,22 @@ trap 'rm -f "$tmp"' EXIT
   echo "boundary,alpha,omega,nu,n,sweeps,swap_acceptance,T_over_N,model_T_over_N,model_excluded_T_over_N,error_paper,error_excluded,level1_own_measured,level1_own_model_excluded,seed"
   while read -r alpha omega nu n boundary sweeps_list seeds; do
     [ -z "$alpha" ] && continue
-    for seed in $(echo "${seeds:-1}" | tr , ' '); do
-    for sweeps in ${sweeps_list//,/ }; do
-      echo "plots/equilibrated.sh: alpha=$alpha omega=$omega nu=$nu n=$n $boundary sweeps=$sweeps seed=$seed" >&2
-      eq=()
-      [ "$sweeps" -gt 0 ] && eq=(--equilibrate --sweeps "$sweeps")
-      f=$("$hgrid" generate --n "$n" --nu "$nu" --alpha "$alpha" --omega "$omega" --boundary "$boundary" \
-            --placement excluded ${eq[@]+"${eq[@]}"} --seed "$seed" --cache results/packings --quiet | tail -1)
-      acc=$("$hgrid" info "$f" --json | jq '.attributes.equilibration_swap_acceptance // 0')
-      "$hgrid" count "$f" --cells optimal --threads 1 --json 2>/dev/null |
-        jq -r --arg seed "$seed" --arg a "$alpha" --arg w "$omega" --arg nu "$nu" --arg s "$sweeps" --arg acc "$acc" \
-          '[.boundary, $a, $w, $nu, .n, $s, $acc, .T_over_N, .model_T_over_N, .model_excluded_T_over_N,
-            (.T_over_N / .model_T_over_N - 1), (.T_over_N / .model_excluded_T_over_N - 1),
-            .per_level[0].narrow_phase_checks_by_level_searched[0],
-            .per_level[0].model_excluded_narrow_phase_checks_by_level_searched[0], $seed] | @csv' | tr -d '"'
-    done
+    seeds=${seeds:-1}
+    for seed in ${seeds//,/ }; do
+      for sweeps in ${sweeps_list//,/ }; do
+        echo "plots/equilibrated.sh: alpha=$alpha omega=$omega nu=$nu n=$n $boundary sweeps=$sweeps seed=$seed" >&2
+        eq=()
+        [ "$sweeps" -gt 0 ] && eq=(--equilibrate --sweeps "$sweeps")
+        f=$("$hgrid" generate --n "$n" --nu "$nu" --alpha "$alpha" --omega "$omega" --boundary "$boundary" \
+              --placement excluded ${eq[@]+"${eq[@]}"} --seed "$seed" --cache results/packings --quiet | tail -1)
+        acc=$("$hgrid" info "$f" --json | jq '.attributes.equilibration_swap_acceptance // 0')
+        "$hgrid" count "$f" --cells optimal --threads 1 --json 2>/dev/null |
+          jq -r --arg seed "$seed" --arg a "$alpha" --arg w "$omega" --arg nu "$nu" --arg s "$sweeps" --arg acc "$acc" \
+            '[.boundary, $a, $w, $nu, .n, $s, $acc, .T_over_N, .model_T_over_N, .model_excluded_T_over_N,
+              (.T_over_N / .model_T_over_N - 1), (.T_over_N / .model_excluded_T_over_N - 1),
+              .per_level[0].narrow_phase_checks_by_level_searched[0],
+              .per_level[0].model_excluded_narrow_phase_checks_by_level_searched[0], $seed] | @csv' | tr -d '"'
+      done
     done
   done <<< "$points"
 } > "$tmp"
