@@ -1,7 +1,8 @@
 """The Fig. 12 alpha = -3, omega = 10, nu = 0.6 mixture in 30 geometric classes,
-and the wall as a Percus-Yevick component, for wall_product.py and
-wall_mediators.py (docs/MODEL.md section 8, walls)."""
+and the wall as a Percus-Yevick component, for wall_product.py,
+wall_mediators.py and wall_contact.py (docs/MODEL.md section 8, walls)."""
 import numpy as np
+from excluded_pins import hhat
 
 alpha, omega, nu = -3.0, 10.0, 0.6
 s1 = 3.6467469369631162                 # level-1 cell size at N = 3e4
@@ -28,3 +29,17 @@ k = np.arange(1, int(30 / sig.min() / dk)) * dk
 def radial(Y, r):
     """h(r) from Y(k) = hhat(k) by the sine transform on the grid k."""
     return (np.sin(np.outer(r, k)) @ (k * Y)) * dk / (2 * np.pi ** 2 * r)
+
+
+def wall_hhat(rho_classes):
+    """hhat_cW(k) on the grid k for every class c (columns), the classes at densities rho_classes."""
+    rw = np.append(rho_classes, rho_w[-1])
+    Y = np.empty((len(k), B))
+    for i0 in range(0, len(k), 500):
+        Y[i0:i0 + 500] = hhat(k[i0:i0 + 500], rw, sig_w)[:, :B, B]
+    return Y
+
+
+def wall_profile(Y, c, z):
+    """Class c's density at centre height z above the wall over its bulk density (0 where it does not fit)."""
+    return np.where(z < sig[c] / 2, 0.0, 1 + radial(Y[:, c], sw / 2 + z))

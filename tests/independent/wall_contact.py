@@ -16,7 +16,6 @@ profile averaged over the same gaps.
 import sys
 import numpy as np
 import fig12_mixture as M
-from excluded_pins import hhat
 
 nu = float(sys.argv[1]) if len(sys.argv) > 1 else 0.6
 rho = M.rho * nu / M.nu
@@ -36,10 +35,7 @@ for lo, hi in groups:
 if len(sys.argv) < 3:
     sys.exit(0)
 
-rho_w = np.append(rho, M.rho_w[-1])
-Y = np.empty((len(M.k), M.B))
-for i0 in range(0, len(M.k), 500):
-    Y[i0:i0 + 500] = hhat(M.k[i0:i0 + 500], rho_w, M.sig_w)[:, :M.B, M.B]
+Y = M.wall_hhat(rho)
 gap = np.arange(0.0, 12, 0.01)
 lines = open(sys.argv[2]).readlines()
 L = float(lines[1].split('"')[1].split()[0])
@@ -55,6 +51,6 @@ for lo, hi in groups:
     meas = np.histogram(g, bins)[0] / np.diff(bins) / bulk
     c = [i for i in range(M.B) if lo <= s[i] / 2 < hi]
     w = M.P[c] / M.P[c].sum()
-    py = sum(wc * (1 + M.radial(Y[:, i], M.sw / 2 + s[i] / 2 + gap)) for i, wc in zip(c, w))
+    py = sum(wc * M.wall_profile(Y, i, s[i] / 2 + gap) for i, wc in zip(c, w))
     pyb = [py[(gap >= bins[i]) & (gap < bins[i + 1])].mean() for i in range(len(bins) - 1)]
     print(f"  radii {lo}-{hi} ({m.sum()}): " + " ".join(f"{meas[i]:.1f}/{pyb[i]:.1f}" for i in range(len(bins) - 1)))

@@ -19,16 +19,11 @@ centre fits) and Percus-Yevick's (with the contact layers). Mixture: the
 Fig. 12 alpha = -3, omega = 10, nu = 0.6 one, level-1 cell s1 = 3.6467.
 """
 import numpy as np
-from excluded_pins import hhat
-from fig12_mixture import B, k, radial, rho, rho_w, s1, sig, sig_w, sw
+from fig12_mixture import B, rho, s1, sig, wall_hhat, wall_profile
 
-Y = np.empty((len(k), B))
-for i0 in range(0, len(k), 500):
-    Y[i0:i0 + 500] = hhat(k[i0:i0 + 500], rho_w, sig_w)[:, :B, B]
+Y = wall_hhat(rho)
 zz = np.arange(0.0, 40, 0.05)            # centre height above the wall
-rw = sw / 2 + zz
-prof = np.array([1 + radial(Y[:, c], rw) for c in range(B)])
-prof = np.where(zz[None] < sig[:, None] / 2, 0.0, prof)
+prof = np.array([wall_profile(Y, c, zz) for c in range(B)])
 
 
 def disc_overlap(p, q, d):
