@@ -265,6 +265,21 @@ TEST(ExcludedModel, WalledBoxesApproachTheBulk) {
   EXPECT_LT(large, small / 5);
 }
 
+TEST(ExcludedModel, WalledBoxesConvergeInTheWaveNumbers) {
+  // The wall profiles' contact step is transformed in closed form and their
+  // r-grid is fine: doubling k_max moves a small walled box (the Fig. 12
+  // alpha = -3, N = 3000 one, where the wall layers weigh most) by < 1e-3.
+  const PowerLaw d(-3, 10);
+  const std::vector<double> s = {3.71, 6.29, 9.67, 14.14, 20.0};
+  const ModelParams p{3, 0.6, 0.2, Search::top_down};
+  const WallBox box{{72.5, 72.5, 72.5}};
+  const ModelResult a = evaluate_excluded_model(d, p, s, {}, box);
+  ExcludedOptions fine;
+  fine.k_max *= 2;
+  const ModelResult b = evaluate_excluded_model(d, p, s, fine, box);
+  EXPECT_NEAR(b.T_over_N / a.T_over_N, 1.0, kDiscretisationRelTol);
+}
+
 TEST(ExcludedModel, WalledSquaresApproachTheBulk) {
   // 2D: the wall layer's share of the square falls like 1/A.
   const PowerLaw d(-3, 5);

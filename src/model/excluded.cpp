@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <numbers>
 #include <string>
@@ -95,6 +96,22 @@ std::size_t next_pow2(double x) {
   return n;
 }
 
+// The contact step of h_bW, taken out of the transform and added back in r:
+// s(r) = -1 inside contact (r < R), (g - 1) e^{-(r - R)/lambda} outside, where g
+// is the Percus-Yevick contact value (Lebowitz, Phys. Rev. 133 (1964) A895). Its 3D Fourier
+// transform, shat(k) = (4 pi / k) int r s(r) sin(kr) dr, in closed form.
+struct ContactStep {
+  double R, g, lambda;
+  double operator()(double r) const { return r < R ? -1.0 : (g - 1.0) * std::exp(-(r - R) / lambda); }
+  double transform(double k) const {
+    const double kR = k * R;
+    const double inside = -(std::sin(kR) - kR * std::cos(kR)) / (k * k);
+    const std::complex<double> z(1.0 / lambda, -k);  // a - ik
+    const double outside = (std::exp(std::complex<double>(0.0, kR)) * (1.0 / (z * z) + R / z)).imag();
+    return 4.0 * std::numbers::pi / k * (inside + (g - 1.0) * outside);
+  }
+};
+
 // Wall density profiles: the wall is a sphere kWallDiameter times the largest
 // diameter, at a density too low to matter, in the same Percus-Yevick mixture
 // (the wall limit of the mixture's big-particle structure). h_Wb(z) is
@@ -103,6 +120,7 @@ constexpr double kWallDiameter = 20.0;
 constexpr double kWallReach = 4.0;
 constexpr double kWallPacking = 1e-12;  // (pi/6) rho_W sigma_W^3
 constexpr double kWallDk = 0.25;        // wave-number step, in units of pi / reach
+constexpr int kWallPad = 16;            // r-grid oversampling of the wall profiles' sine transform
 
 std::vector<detail::WallProfile> wall_profiles(const std::vector<double>& rho, const std::vector<double>& sigma,
                                                const std::vector<Bin>& bins, const ExcludedOptions& opt) {
@@ -119,19 +137,37 @@ std::vector<detail::WallProfile> wall_profiles(const std::vector<double>& rho, c
   if (N > static_cast<std::size_t>(kMaxWaveNumbers) * 4)
     throw InputError("omega", "size ratio too large for the excluded-volume model with walls");
   const double dk = kmax / static_cast<double>(N);
-  std::vector<std::vector<double>> F(B, std::vector<double>(N * kPad, 0.0)), y;
+  // The step at contact would be smeared over ~pi / kmax by the truncated
+  // transform (part of the contact layer lost inside the wall): it is
+  // transformed exactly instead, and only the continuous rest numerically.
+  double xi2 = 0.0, xi3 = 0.0;
+  for (std::size_t i = 0; i < rho2.size(); ++i) {
+    xi2 += std::numbers::pi / 6.0 * rho2[i] * sig2[i] * sig2[i];
+    xi3 += std::numbers::pi / 6.0 * rho2[i] * sig2[i] * sig2[i] * sig2[i];
+  }
+  std::vector<ContactStep> step(B);
+  for (int b = 0; b < B; ++b) {
+    const double D = sigma[b] * sw / (sigma[b] + sw);
+    step[b] = {0.5 * (sigma[b] + sw), 1.0 / (1.0 - xi3) + 3.0 * xi2 * D / ((1.0 - xi3) * (1.0 - xi3)), 0.5 * smin};
+  }
+  std::vector<std::vector<double>> Y(B, std::vector<double>(N, 0.0)), y;
   std::vector<std::vector<double>> e(1, std::vector<double>(B + 1, 0.0));
   e[0][B] = 1.0;
   for (std::size_t m = 1; m < N; ++m) {
     const double k = m * dk;
     py.apply_h(k, e, y);
-    for (int b = 0; b < B; ++b) F[b][m] = k * y[0][b] / std::sqrt(rho[b] * rw);
+    for (int b = 0; b < B; ++b) Y[b][m] = k * (y[0][b] / std::sqrt(rho[b] * rw) - step[b].transform(k));
   }
-  const std::size_t Nf = N * kPad;
+  // The profiles' layers at contact are narrow: the r-grid is kWallPad times
+  // finer than the wave numbers alone need (one class transformed at a time).
+  const std::size_t Nf = N * kWallPad;
   const double dr = std::numbers::pi / (static_cast<double>(Nf) * dk);
   std::vector<detail::WallProfile> prof(B);
+  std::vector<double> F;
   for (int b = 0; b < B; ++b) {
-    detail::sine_transform(F[b]);
+    F.assign(Nf, 0.0);
+    std::copy(Y[b].begin(), Y[b].end(), F.begin());
+    detail::sine_transform(F);
     prof[b].radius = bins[b].r_mean;
     prof[b].dz = dr;
     const auto nz = static_cast<std::size_t>(kWallReach * smax / dr);
@@ -140,8 +176,8 @@ std::vector<detail::WallProfile> wall_profiles(const std::vector<double>& rho, c
       const double r = 0.5 * sw + i * dr, t = r / dr;
       const auto n = static_cast<std::size_t>(t);
       if (n + 1 >= Nf) break;
-      const double hn = F[b][n] / (n * dr), hn1 = F[b][n + 1] / ((n + 1) * dr);
-      prof[b].h[i] = (hn + (t - n) * (hn1 - hn)) * dk / (2.0 * std::numbers::pi * std::numbers::pi);
+      const double hn = F[n] / (n * dr), hn1 = F[n + 1] / ((n + 1) * dr);
+      prof[b].h[i] = (hn + (t - n) * (hn1 - hn)) * dk / (2.0 * std::numbers::pi * std::numbers::pi) + step[b](r);
     }
   }
   return prof;
