@@ -8,8 +8,8 @@
 # own-level checks (measured, excluded-volume model), where the omega = 10,
 # nu = 0.6 miss sits (docs/MODEL.md section 8, limits). Writes
 # results/equilibrated[-SCALE].csv and prints it as a Markdown table.
-# Usage: plots/equilibrated.sh [SCALE]   (default: 6 packings x 3 states, N = 10^5, ~4 min; long: up to 10^5
-#        sweeps at N = 3000-10^5, ~35 min on 2 cores; walls: walled against periodic, N = 3000,
+# Usage: plots/equilibrated.sh [SCALE]   (default: 6 packings x 3 states, N = 10^5, ~4 min; long: up to 10^4
+#        sweeps at N = 3·10^4-10^5 (periodic; walls: the walls scale), ~30 min on 2 cores; walls: walled against periodic, N = 3000,
 #        nu = 0.4-0.6, up to 10^5 sweeps, several seeds, ~40 min; smoke: 2 x 2 at 10^4)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -28,7 +28,6 @@ points_default="
 -3 50 0.6 100000 periodic 0,20,200
 -3 10 0.6 3000 walls 0,20,200"
 points_long="
--3 10 0.6 3000 walls 0,2000,10000,30000,100000
 -3 50 0.6 30000 periodic 0,10000
 -3 100 0.6 30000 periodic 0,10000
 -3 10 0.6 100000 periodic 0,200,10000
