@@ -31,15 +31,42 @@ def radial(Y, r):
     return (np.sin(np.outer(r, k)) @ (k * Y)) * dk / (2 * np.pi ** 2 * r)
 
 
+def contact_step(c, g, r):
+    """The step of h_cW at contact, -1 inside and (g - 1) e^{-(r - R)/r_min} outside
+    (R = (sig_c + sw)/2, g the PY contact value), at distances r."""
+    R = (sig[c] + sw) / 2
+    return np.where(r < R, -1.0, (g - 1) * np.exp(-(r - R) / (sig.min() / 2)))
+
+
+def contact_step_hat(c, g, q):
+    """Its 3D Fourier transform, in closed form, at wave numbers q."""
+    R, a = (sig[c] + sw) / 2, 2 / sig.min()
+    inside = -(np.sin(q * R) - q * R * np.cos(q * R)) / q ** 2
+    zc = a - 1j * q
+    outside = (np.exp(1j * q * R) * (1 / zc ** 2 + R / zc)).imag
+    return 4 * np.pi / q * (inside + (g - 1) * outside)
+
+
 def wall_hhat(rho_classes):
-    """hhat_cW(k) on the grid k for every class c (columns), the classes at densities rho_classes."""
+    """PY's wall correlations hhat_cW for every class c, the classes at densities rho_classes:
+    (the smooth rest on the grid k, columns c; the contact values g_c). The step at contact
+    is transformed in closed form and added back in r (a truncated transform would smear it)."""
     rw = np.append(rho_classes, rho_w[-1])
     Y = np.empty((len(k), B))
     for i0 in range(0, len(k), 500):
         Y[i0:i0 + 500] = hhat(k[i0:i0 + 500], rw, sig_w)[:, :B, B]
-    return Y
+    xi2 = np.pi / 6 * np.sum(rho_classes * sig ** 2)
+    xi3 = np.pi / 6 * np.sum(rho_classes * sig ** 3)
+    D = sig * sw / (sig + sw)
+    g = 1 / (1 - xi3) + 3 * xi2 * D / (1 - xi3) ** 2
+    for c in range(B):
+        Y[:, c] -= contact_step_hat(c, g[c], k)
+    return Y, g
 
 
-def wall_profile(Y, c, z):
-    """Class c's density at centre height z above the wall over its bulk density (0 where it does not fit)."""
-    return np.where(z < sig[c] / 2, 0.0, 1 + radial(Y[:, c], sw / 2 + z))
+def wall_profile(W, c, z):
+    """Class c's density at centre height z above the wall over its bulk density (0 where it
+    does not fit); W = wall_hhat(...)."""
+    Y, g = W
+    r = sw / 2 + z
+    return np.where(z < sig[c] / 2, 0.0, 1 + radial(Y[:, c], r) + contact_step(c, g[c], r))
