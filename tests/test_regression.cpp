@@ -89,7 +89,7 @@ void expect_baseline(const std::string& name) {
 // (omega = 10, nu = 0.6, N = 3000): its largest known error is there
 // (docs/MODEL.md section 8: -3.7 % to -3.9 % at alpha = -3), so the bound is
 // that plus N = 3000's sampling noise. The walled points (alpha = -3 there is
-// 8 % off) are only required to be recorded.
+// 7 % off) are only required to be recorded.
 void expect_excluded_model_recorded(const std::string& name) {
   constexpr double kExcludedModelRelTol = 0.05;
   int periodic = 0;
