@@ -10,7 +10,7 @@
 # results/equilibrated[-SCALE].csv and prints it as a Markdown table.
 # Usage: plots/equilibrated.sh [SCALE]   (default: 6 packings x 3 states, N = 10^5, ~4 min; long: up to 10^4
 #        sweeps at N = 3·10^4-10^5 (periodic; walls: the walls scale), ~30 min on 2 cores; walls: walled against periodic, N = 3000,
-#        nu = 0.4-0.6, up to 10^5 sweeps, several seeds, ~40 min; smoke: 2 x 2 at 10^4)
+#        nu = 0.4-0.6, up to 10^5 sweeps, several seeds, ~50 min; smoke: 2 x 2 at 10^4)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scale=${1:-default}
@@ -40,8 +40,8 @@ points_walls="
 -3 10 0.4 3000 periodic 0,10000,100000 1,2,3
 -3 10 0.5 3000 walls 0,10000,100000 1,2
 -3 10 0.5 3000 periodic 0,10000,100000 1,2
--3 10 0.6 3000 walls 0,10000,100000 1
--3 10 0.6 3000 periodic 0,10000,100000 1"
+-3 10 0.6 3000 walls 0,10000,100000 1,2
+-3 10 0.6 3000 periodic 0,10000,100000 1,2"
 points_smoke="
 -3 10 0.6 10000 periodic 0,20
 -3 10 0.6 3000 walls 0,20"
