@@ -98,7 +98,7 @@ std::size_t next_pow2(double x) {
 
 // The contact step of h_bW, taken out of the transform and added back in r:
 // s(r) = -1 inside contact (r < R), (g - 1) e^{-(r - R)/lambda} outside, where g
-// is the Percus-Yevick contact value (Lebowitz, Phys. Rev. 133 (1964) A895). Its 3D Fourier
+// is the Percus-Yevick contact value (PyMixture::contact_value). Its 3D Fourier
 // transform, shat(k) = (4 pi / k) int r s(r) sin(kr) dr, in closed form.
 struct ContactStep {
   double R, g, lambda;
@@ -140,16 +140,8 @@ std::vector<detail::WallProfile> wall_profiles(const std::vector<double>& rho, c
   // The step at contact would be smeared over ~pi / kmax by the truncated
   // transform (part of the contact layer lost inside the wall): it is
   // transformed exactly instead, and only the continuous rest numerically.
-  double xi2 = 0.0, xi3 = 0.0;
-  for (std::size_t i = 0; i < rho2.size(); ++i) {
-    xi2 += std::numbers::pi / 6.0 * rho2[i] * sig2[i] * sig2[i];
-    xi3 += std::numbers::pi / 6.0 * rho2[i] * sig2[i] * sig2[i] * sig2[i];
-  }
   std::vector<ContactStep> step(B);
-  for (int b = 0; b < B; ++b) {
-    const double D = sigma[b] * sw / (sigma[b] + sw);
-    step[b] = {0.5 * (sigma[b] + sw), 1.0 / (1.0 - xi3) + 3.0 * xi2 * D / ((1.0 - xi3) * (1.0 - xi3)), 0.5 * smin};
-  }
+  for (int b = 0; b < B; ++b) step[b] = {0.5 * (sigma[b] + sw), py.contact_value(b, B), 0.5 * smin};
   std::vector<std::vector<double>> Y(B, std::vector<double>(N, 0.0)), y;
   std::vector<std::vector<double>> e(1, std::vector<double>(B + 1, 0.0));
   e[0][B] = 1.0;

@@ -48,6 +48,11 @@ PyMixture::PyMixture(std::vector<double> rho, std::vector<double> sigma)
   }
 }
 
+double PyMixture::contact_value(int a, int b) const {
+  const double e = 1.0 - xi_[3], D = sigma_[a] * sigma_[b] / (sigma_[a] + sigma_[b]);
+  return 1.0 / e + 3.0 * xi_[2] * D / (e * e);
+}
+
 // J_m = int_0^L t^m e^{ikt} dt, m = 0, 1, 2: the closed form for |kL| >= 1, a
 // power series below (the closed form cancels catastrophically as kL -> 0).
 static void moments(double k, double L, cplx e, cplx J[3]) {  // e = exp(i k L)

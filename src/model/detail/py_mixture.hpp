@@ -16,6 +16,9 @@ class PyMixture {
 
   int size() const { return static_cast<int>(rho_.size()); }
   double packing_fraction() const { return xi_[3]; }
+  /// g_ab at contact (Lebowitz's closed form): 1/(1 - xi_3) + 3 xi_2 D/(1 - xi_3)^2,
+  /// D = sigma_a sigma_b / (sigma_a + sigma_b).
+  double contact_value(int a, int b) const;
 
   /// For wave number k > 0 and right-hand sides v (each of length size()),
   /// returns y = H(k) v for every v, where H_ab(k) = sqrt(rho_a rho_b) hhat_ab(k)
