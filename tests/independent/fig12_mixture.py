@@ -26,6 +26,13 @@ dk = 0.25 * np.pi / (sw / 2 + 4 * sig.max())
 k = np.arange(1, int(30 / sig.min() / dk)) * dk
 
 
+def bmcsl_pressure(rho_classes, sigma):
+    """beta P of the Boublik-Mansoori-Carnahan-Starling-Leland equation of state."""
+    xi = [np.pi / 6 * np.sum(rho_classes * sigma ** m) for m in range(4)]
+    e = 1 - xi[3]
+    return 6 / np.pi * (xi[0] / e + 3 * xi[1] * xi[2] / e ** 2 + (3 - xi[3]) * xi[2] ** 3 / e ** 3)
+
+
 def radial(Y, r):
     """h(r) from Y(k) = hhat(k) by the sine transform on the grid k."""
     return (np.sin(np.outer(r, k)) @ (k * Y)) * dk / (2 * np.pi ** 2 * r)

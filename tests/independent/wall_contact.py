@@ -24,7 +24,7 @@ xi = [np.pi / 6 * np.sum(rho * s ** m) for m in range(4)]
 e = 1 - xi[3]
 g_py = 1 / e + 3 * xi[2] * s / e ** 2                   # Lebowitz's contact value, partner of infinite size
 g_bmcsl = g_py + 2 * xi[2] ** 2 * s ** 2 / e ** 3
-beta_p = 6 / np.pi * (xi[0] / e + 3 * xi[1] * xi[2] / e ** 2 + (3 - xi[3]) * xi[2] ** 3 / e ** 3)
+beta_p = M.bmcsl_pressure(rho, s)
 print(f"nu {nu}: sum of contact densities PY {np.sum(rho * g_py):.4f}, BMCSL {np.sum(rho * g_bmcsl):.4f}; "
       f"beta P (BMCSL) {beta_p:.4f}")
 groups = [(1, 1.5), (1.5, 2.5), (2.5, 4), (4, 6), (6, 10.01)]

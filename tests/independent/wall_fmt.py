@@ -78,12 +78,6 @@ def phi(n0, n1, n2, n3, n1v, n2v):
     return P, (d0, d1, d2, d3, d1v, d2v)
 
 
-def bmcsl_p(rb, sig):
-    xi = [np.pi / 6 * np.sum(rb * sig ** m) for m in range(4)]
-    e = 1 - xi[3]
-    return 6 / np.pi * (xi[0] / e + 3 * xi[1] * xi[2] / e ** 2 + (3 - xi[3]) * xi[2] ** 3 / e ** 3)
-
-
 def bulk_n(rb, R):
     return (np.sum(rb), np.sum(rb * R), np.sum(rb * 4 * np.pi * R ** 2),
             np.sum(rb * 4 / 3 * np.pi * R ** 3), 0.0, 0.0)
@@ -139,7 +133,7 @@ class Wall:
         R = self.R
         self.mu_ex = d[0] + d[1] * R + d[2] * 4 * np.pi * R ** 2 + d[3] * 4 / 3 * np.pi * R ** 3
         self.betaP_fmt = float(nb[0] - P + sum(a * b for a, b in zip(nb, d)))
-        self.betaP = bmcsl_p(self.rb, M.sig)
+        self.betaP = M.bmcsl_pressure(self.rb, M.sig)
 
     def density(self, x):
         """rho_i(z_j) (absolute) from the unknowns x = ln(rho/rho_b) at accessible points."""
@@ -179,11 +173,6 @@ class Wall:
         _, d = phi(*n)
         c = self.c1field(d)
         return (self.mu_ex[:, None] - c)[self.acc] - x, n3max
-
-    def free_energy(self, rho):
-        """Discrete excess free energy per area dz sum_m Phi(n(z_m)) (for gradient checks)."""
-        P, _ = phi(*self.weighted(rho))
-        return self.dz * P.sum()
 
     def contact(self, x):
         """rho_i(R_i)/rho_b,i by linear extrapolation of ln rho from the first two accessible points."""
