@@ -258,6 +258,78 @@ TEST(Generate, EquilibrationIsTheSameForAnyThreadCount) {
   }
 }
 
+// A long equilibration can be resumed: from a finished stage (fewer sweeps,
+// through a file, so the recorded generator state is what resumes), from a
+// checkpoint of a run killed part-way, and through the cache. Each gives the
+// uninterrupted run's packing, bit for bit, and its acceptance totals.
+TEST(Generate, ResumedEquilibrationIsTheUninterruptedOne) {
+  const fs::path dir = temp_dir("resume");
+  for (const auto& [d, b] : std::vector<std::pair<int, Boundary>>{
+           {3, Boundary::periodic}, {3, Boundary::walls}, {2, Boundary::walls}}) {
+    SCOPED_TRACE("d " + std::to_string(d) + " " + to_string(b) + " seed " + std::to_string(kSeed));
+    auto s = spec(d, 2000, 0.5, -3, 5, Placement::excluded, b);
+    s.equilibrate = true;
+    s.sweeps = 30;
+    const Packing whole = generate_packing(s);
+    const auto same = [&](const Packing& p) {
+      EXPECT_EQ(p.positions, whole.positions);
+      EXPECT_EQ(p.radii, whole.radii);
+      for (const char* a : {"equilibration_acceptance", "equilibration_swap_acceptance", "equilibration_sweeps"})
+        EXPECT_EQ(p.num_attrs.at(a), whole.num_attrs.at(a)) << a;
+      EXPECT_EQ(p.str_attrs.at("cache_key"), whole.str_attrs.at("cache_key"));
+      EXPECT_EQ(p.str_attrs.at("equilibration_rng_state"), whole.str_attrs.at("equilibration_rng_state"));
+    };
+    // From a finished stage of 10 sweeps, through a file.
+    auto s10 = s;
+    s10.sweeps = 10;
+    write_packing((dir / "s10.h5").string(), generate_packing(s10));
+    const Packing stage = read_packing((dir / "s10.h5").string());
+    EXPECT_EQ(resume_mismatch(stage, s), "");
+    same(generate_packing(s, &stage));
+    // From a checkpoint: one after every sweep, the run killed after the 17th.
+    auto every = s;
+    every.checkpoint_seconds = 0;
+    std::vector<Packing> checkpoints;
+    struct Killed {};
+    EXPECT_THROW(generate_packing(every, nullptr,
+                                  [&](const Packing& c) {
+                                    checkpoints.push_back(c);
+                                    if (checkpoints.size() == 17) throw Killed{};
+                                  }),
+                 Killed);
+    ASSERT_EQ(checkpoints.size(), 17u);
+    EXPECT_EQ(equilibration_sweeps_done(checkpoints.back()), 17u);
+    same(generate_packing(s, &checkpoints.back()));
+    // What cannot be resumed.
+    auto other = s;
+    other.seed += 1;
+    EXPECT_NE(resume_mismatch(stage, other), "");
+    EXPECT_NE(resume_mismatch(whole, s10), "");  // further than asked
+    auto placed = s;
+    placed.equilibrate = false;
+    EXPECT_NE(resume_mismatch(generate_packing(placed), s), "");
+    EXPECT_THROW(generate_packing(s10, &whole), std::invalid_argument);
+  }
+  // The cache: 10 sweeps, then 30 resumes them; 20 afterwards starts afresh
+  // and leaves the resume file at 30.
+  auto s = spec(3, 2000, 0.5, -3, 5, Placement::excluded);
+  s.equilibrate = true;
+  s.sweeps = 30;
+  const Packing whole = generate_packing(s);
+  auto s10 = s, s20 = s;
+  s10.sweeps = 10;
+  s20.sweeps = 20;
+  const std::string cache = (dir / "cache").string(), resume = equilibration_resume_path(s, cache);
+  EXPECT_EQ(equilibration_resume_path(s10, cache), resume);
+  cached_packing(s10, cache);
+  EXPECT_EQ(equilibration_sweeps_done(read_packing(resume)), 10u);
+  EXPECT_EQ(cached_packing(s, cache).positions, whole.positions);
+  EXPECT_EQ(equilibration_sweeps_done(read_packing(resume)), 30u);
+  EXPECT_EQ(cached_packing(s20, cache).positions, generate_packing(s20).positions);
+  EXPECT_EQ(equilibration_sweeps_done(read_packing(resume)), 30u);
+  fs::remove_all(dir);
+}
+
 // Sequential addition tries a particle's trials several at a time on
 // threads once particles need many trials: the same packing for any thread
 // count, also when it stalls (20 000 trials of one particle) and the growth

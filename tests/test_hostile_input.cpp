@@ -319,6 +319,28 @@ TEST_F(Hostile, SmallerOnes) {
   // Monte Carlo sweeps: a range, and only with --equilibrate.
   expect_refused("generate --n 10 --nu 0.1 --placement excluded --equilibrate --sweeps 0 --out " + path("x.h5"), "sweeps");
   expect_refused("generate --n 10 --nu 0.1 --placement excluded --sweeps 5 --out " + path("x.h5"), "sweeps");
+  expect_refused("generate --n 10 --nu 0.1 --placement excluded --sweeps 20000000 --equilibrate --out " + path("x.h5"),
+                 "sweeps");
+  // Continuing an equilibration: only with --equilibrate and --out, and only
+  // one of the same packing at fewer sweeps.
+  ASSERT_EQ(hgrid_run("generate --n 300 --nu 0.3 --omega 4 --placement excluded --equilibrate --sweeps 5 --out " +
+                      path("eq5.h5"))
+                .status,
+            0);
+  expect_refused("generate --n 300 --nu 0.3 --omega 4 --placement excluded --from " + path("eq5.h5") + " --out " +
+                     path("x.h5"),
+                 "from");
+  expect_refused("generate --n 300 --nu 0.3 --omega 4 --placement excluded --equilibrate --sweeps 9 --seed 2 --from " +
+                     path("eq5.h5") + " --out " + path("x.h5"),
+                 "from");
+  expect_refused("generate --n 300 --nu 0.3 --omega 4 --placement excluded --equilibrate --sweeps 3 --from " +
+                     path("eq5.h5") + " --out " + path("x.h5"),
+                 "from");
+  EXPECT_FALSE(fs::exists(path("x.h5")));
+  EXPECT_EQ(hgrid_run("generate --n 300 --nu 0.3 --omega 4 --placement excluded --equilibrate --sweeps 9 --from " +
+                      path("eq5.h5") + " --out " + path("x.h5"))
+                .status,
+            0);
   expect_refused("generate --n 10 --nu 0.1 --placement excluded --equilibrate --threads -1 --out " + path("x.h5"),
                  "threads");
   // An unknown option is named as such, even with a required one missing.

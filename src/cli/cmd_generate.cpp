@@ -19,7 +19,7 @@ namespace {
 
 struct GenerateOptions {
   PackingSpec spec;
-  std::string boundary = "periodic", placement = "random", out, cache_dir;
+  std::string boundary = "periodic", placement = "random", out, cache_dir, from;
   bool quiet = false;
   bool sweeps_given = false;
 };
@@ -32,6 +32,8 @@ void run_generate(GenerateOptions o) {
   if (o.spec.equilibrate && o.spec.placement != Placement::excluded)
     throw InputError("equilibrate", "only applies to --placement excluded");
   if (o.sweeps_given && !o.spec.equilibrate) throw InputError("sweeps", "only applies with --equilibrate");
+  if (!o.from.empty() && (!o.spec.equilibrate || o.out.empty()))
+    throw InputError("from", "only applies with --equilibrate and --out (--cache resumes by itself)");
   Packing p;
   std::string path = o.out;
   bool reused = false;  // --cache and the packing was there already
@@ -39,6 +41,12 @@ void run_generate(GenerateOptions o) {
     path = packing_cache_path(o.spec, o.cache_dir);
     reused = std::filesystem::exists(path);
     p = cached_packing(o.spec, o.cache_dir);
+  } else if (!o.from.empty()) {
+    const Packing start = read_packing(o.from);
+    const std::string why = resume_mismatch(start, o.spec);
+    if (!why.empty()) throw InputError("from", "cannot continue " + o.from + ": " + why);
+    p = generate_packing(o.spec, &start);
+    write_packing(o.out, p);
   } else {
     p = generate_packing(o.spec);
     write_packing(o.out, p);
@@ -66,7 +74,9 @@ void register_generate_commands(CLI::App& app) {
       ->default_val("random");
   sub->add_flag("--equilibrate", o->spec.equilibrate,
                 "excluded: hard-sphere Monte Carlo after placement (displacements and swaps of two particles)");
-  auto* sweeps = sub->add_option("--sweeps", o->spec.sweeps, "with --equilibrate: Monte Carlo sweeps (N trials each), 1 to 100000")
+  auto* sweeps = sub->add_option("--sweeps", o->spec.sweeps,
+                                 "with --equilibrate: Monte Carlo sweeps (N trials each), 1 to " +
+                                     std::to_string(kMaxEquilibrationSweeps))
                      ->default_val(kDefaultEquilibrationSweeps);
   sub->add_option("--threads", o->spec.threads,
                   "excluded-volume placement: threads of sequential addition, growth + FIRE and --equilibrate's Monte Carlo, 0 = all cores (OMP_NUM_THREADS when set), or 1 to " +
@@ -74,7 +84,13 @@ void register_generate_commands(CLI::App& app) {
       ->default_val(0);
   sub->add_option("--seed", o->spec.seed, "random seed")->default_val(1)->check(CLI::NonNegativeNumber);
   sub->add_option("--out", o->out, "output file (.h5)");
-  sub->add_option("--cache", o->cache_dir, "instead of --out: reuse or create DIR/<hash>.h5 (path printed)");
+  sub->add_option("--cache", o->cache_dir,
+                  "instead of --out: reuse or create DIR/<hash>.h5 (path printed); an equilibration resumes from the "
+                  "furthest stage of it cached there (a killed run, or fewer sweeps asked before) and checkpoints "
+                  "every 5 min");
+  sub->add_option("--from", o->from,
+                  "with --equilibrate and --out: continue the equilibration recorded in FILE (the same parameters "
+                  "at fewer sweeps) to --sweeps; the result equals the uninterrupted run's");
   sub->add_flag("--quiet", o->quiet, "no progress lines");
   sub->callback([o, sweeps] {
     o->sweeps_given = sweeps->count() > 0;

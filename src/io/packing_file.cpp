@@ -34,13 +34,15 @@ using namespace detail;
 /// other attributes are never iterated, so a corrupt attribute table cannot
 /// reach the reader.
 const char* const kStringAttrs[] = {"cache_key", "dist", "placement", "seed_str", "method", "git_hash", "compiler", "build_flags",
-                                    "version"};
+                                    "version", "equilibration_chain", "equilibration_rng_state"};
 const char* const kNumberAttrs[] = {"seed", "n", "nu", "alpha", "omega", "sigma", "equilibrate", "generator_version",
                                     "rcp_estimate", "nu_achieved", "max_rel_overlap", "mean_rel_overlap",
                                     "mean_contacts", "slab_max_dev", "ks_distance", "ks_pvalue", "fire_steps",
                                     "growth_start_nu", "growth_steps", "neighbour_list_builds",
                                     "equilibration_acceptance", "equilibration_swap_acceptance",
-                                    "equilibration_sweeps"};
+                                    "equilibration_sweeps", "equilibration_moves_accepted",
+                                    "equilibration_moves_proposed", "equilibration_swaps_accepted",
+                                    "equilibration_swaps_proposed"};
 
 /// Declared values of a dataset, checked against what the file stores and
 /// against the memory available, before anything is allocated.

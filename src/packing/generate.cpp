@@ -179,31 +179,33 @@ double check_packing_spec(const PackingSpec& s) {
   return rcp;
 }
 
-Packing generate_packing(const PackingSpec& s) {
-  const double rcp = check_packing_spec(s);
-  const auto dist = make_distribution(s);
-  detail::GenRng rng(s.seed);
-  Packing p;
-  p.d = s.d;
-  p.boundary = s.boundary;
-  const double side = draw_radii(s, *dist, rng, p.radii);
-  for (int a = 0; a < s.d; ++a) p.box[a] = side;
-  p.positions.assign(s.n * s.d, 0.0);
-  if (s.placement == Placement::random) place_random(s, rng, p);
-  else place_excluded(s, rcp, rng, p);
+namespace {
+
+/// Names of the attributes that carry an equilibration's state.
+constexpr const char* kChainAttr = "equilibration_chain";
+constexpr const char* kRngAttr = "equilibration_rng_state";
+constexpr const char* kTallyAttrs[4] = {"equilibration_moves_accepted", "equilibration_moves_proposed",
+                                        "equilibration_swaps_accepted", "equilibration_swaps_proposed"};
+
+/// Spec, achieved nu and quality attributes of p, generated for s (with
+/// e.sweeps sweeps so far when s.equilibrate; rng: the generator's state
+/// then).
+void describe(Packing& p, const PackingSpec& s, const Distribution& dist, double rcp, const detail::Equilibration& e,
+              const detail::GenRng& rng) {
+  PackingSpec at = s;
   if (s.equilibrate) {
-    Progress progress(s.progress, "hard-sphere Monte Carlo equilibration");
-    const auto e = detail::equilibrate(s.d, s.boundary, p.box, p.radii, p.positions, s.sweeps, s.threads, rng, progress);
-    p.num_attrs["equilibration_acceptance"] = e.displacement_acceptance;
-    p.num_attrs["equilibration_swap_acceptance"] = e.swap_acceptance;
-    p.num_attrs["equilibration_sweeps"] = s.sweeps;
+    at.sweeps = static_cast<int>(e.sweeps);
+    p.num_attrs["equilibration_acceptance"] = e.displacement_acceptance();
+    p.num_attrs["equilibration_swap_acceptance"] = e.swap_acceptance();
+    p.num_attrs["equilibration_sweeps"] = static_cast<double>(e.sweeps);
+    const std::uint64_t tally[4] = {e.moves_accepted, e.moves_proposed, e.swaps_accepted, e.swaps_proposed};
+    for (int k = 0; k < 4; ++k) p.num_attrs[kTallyAttrs[k]] = static_cast<double>(tally[k]);
+    p.str_attrs[kChainAttr] = equilibration_chain_key(s);
+    p.str_attrs[kRngAttr] = rng.state();
   }
-  if (s.boundary == Boundary::periodic)
-    for (std::size_t i = 0; i < p.positions.size(); ++i) p.positions[i] = detail::wrap(p.positions[i], side);
-  // Parameters, achieved nu, quality.
   p.str_attrs["placement"] = to_string(s.placement);
   p.str_attrs["dist"] = s.dist;
-  p.str_attrs["cache_key"] = packing_key(s);
+  p.str_attrs["cache_key"] = packing_key(at);
   p.str_attrs["seed_str"] = std::to_string(s.seed);
   p.num_attrs["seed"] = static_cast<double>(s.seed);
   p.num_attrs["n"] = static_cast<double>(s.n);
@@ -217,7 +219,7 @@ Packing generate_packing(const PackingSpec& s) {
   // Overlap figures only for excluded volume (random centres overlap anyway,
   // and a contact search would cost more than the placement itself).
   const bool excluded = s.placement == Placement::excluded;
-  const PackingQuality q = assess_packing(p, dist.get(), excluded);
+  const PackingQuality q = assess_packing(p, &dist, excluded);
   p.num_attrs["nu_achieved"] = q.nu;
   if (excluded) {
     p.num_attrs["max_rel_overlap"] = q.max_rel_overlap;
@@ -229,6 +231,70 @@ Packing generate_packing(const PackingSpec& s) {
   p.num_attrs["ks_pvalue"] = q.ks_pvalue;
   if (std::abs(q.nu / s.nu - 1) > kNuRelTol)
     throw std::logic_error("generate_packing: achieved nu " + format_number(q.nu) + " differs from " + format_number(s.nu));
+}
+
+}  // namespace
+
+std::string resume_mismatch(const Packing& from, const PackingSpec& s) {
+  if (!s.equilibrate) return "the requested packing is not equilibrated";
+  const auto chain = from.str_attrs.find(kChainAttr);
+  if (chain == from.str_attrs.end() || !from.str_attrs.count(kRngAttr) || !from.num_attrs.count("equilibration_sweeps"))
+    return "it records no resumable equilibration";
+  if (chain->second != equilibration_chain_key(s)) return "its parameters differ";
+  for (const char* a : kTallyAttrs)
+    if (!from.num_attrs.count(a)) return "it records no resumable equilibration";
+  const double done = from.num_attrs.at("equilibration_sweeps");
+  if (!(done >= 1 && done <= s.sweeps && done == std::floor(done))) return "it is further than the requested sweeps";
+  PackingSpec at = s;
+  at.sweeps = static_cast<int>(done);
+  return packing_mismatch(from, at);
+}
+
+std::uint64_t equilibration_sweeps_done(const Packing& p) {
+  const auto it = p.num_attrs.find("equilibration_sweeps");
+  return it == p.num_attrs.end() ? 0 : static_cast<std::uint64_t>(it->second);
+}
+
+Packing generate_packing(const PackingSpec& s, const Packing* from, const PackingCheckpoint& checkpoint) {
+  const double rcp = check_packing_spec(s);
+  const auto dist = make_distribution(s);
+  detail::GenRng rng(s.seed);
+  detail::Equilibration e;
+  Packing p;
+  if (from) {
+    const std::string why = resume_mismatch(*from, s);
+    if (!why.empty()) throw std::invalid_argument("generate_packing: cannot resume from that packing: " + why);
+    p = *from;
+    if (!rng.restore(from->str_attrs.at(kRngAttr)))
+      throw std::invalid_argument("generate_packing: cannot resume: unreadable random generator state");
+    e.sweeps = equilibration_sweeps_done(*from);
+    std::uint64_t* tally[4] = {&e.moves_accepted, &e.moves_proposed, &e.swaps_accepted, &e.swaps_proposed};
+    for (int k = 0; k < 4; ++k) *tally[k] = static_cast<std::uint64_t>(from->num_attrs.at(kTallyAttrs[k]));
+  } else {
+    p.d = s.d;
+    p.boundary = s.boundary;
+    const double side = draw_radii(s, *dist, rng, p.radii);
+    for (int a = 0; a < s.d; ++a) p.box[a] = side;
+    p.positions.assign(s.n * s.d, 0.0);
+    if (s.placement == Placement::random) place_random(s, rng, p);
+    else place_excluded(s, rcp, rng, p);
+  }
+  if (s.equilibrate) {
+    Progress progress(s.progress, "hard-sphere Monte Carlo equilibration" +
+                                      (from ? " (resumed at sweep " + std::to_string(e.sweeps) + ")" : std::string()));
+    detail::EquilibrationCheckpoint save;
+    if (checkpoint)
+      save = [&](const detail::Equilibration& at) {
+        Packing c = p;  // positions as after at.sweeps sweeps
+        describe(c, s, *dist, rcp, at, rng);
+        checkpoint(c);
+      };
+    detail::equilibrate(s.d, s.boundary, p.box, p.radii, p.positions, static_cast<std::uint64_t>(s.sweeps), s.threads,
+                        rng, progress, e, save, s.checkpoint_seconds);
+  }
+  if (s.boundary == Boundary::periodic)
+    for (std::size_t i = 0; i < p.positions.size(); ++i) p.positions[i] = detail::wrap(p.positions[i], p.box[i % s.d]);
+  describe(p, s, *dist, rcp, e, rng);
   return p;
 }
 
@@ -257,6 +323,13 @@ std::string packing_key(const PackingSpec& s) {
   k += " omega=" + format_number(s.omega) + " boundary=" + to_string(s.boundary) + " placement=" + to_string(s.placement) +
        " seed=" + std::to_string(s.seed) + " equilibrate=" + (s.equilibrate ? "1 checkerboard sweeps=" + std::to_string(s.sweeps) : "0");
   return k;
+}
+
+std::string equilibration_chain_key(const PackingSpec& s) {
+  PackingSpec base = s;
+  base.sweeps = 0;
+  const std::string k = packing_key(base);
+  return k.substr(0, k.rfind(" sweeps="));
 }
 
 std::string packing_mismatch(const Packing& p, const PackingSpec& s) {

@@ -4,6 +4,7 @@
 // (the paper's measured packings, figures 11-12).
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -23,7 +24,7 @@ Placement parse_placement(const std::string& s, const std::string& field = "plac
 /// Everything that determines a generated packing (and its cache key).
 /// Monte Carlo sweeps of an equilibration unless a spec says otherwise.
 inline constexpr int kDefaultEquilibrationSweeps = 20;
-inline constexpr int kMaxEquilibrationSweeps = 100000;
+inline constexpr int kMaxEquilibrationSweeps = 10000000;
 
 struct PackingSpec {
   int d = 3;
@@ -40,6 +41,7 @@ struct PackingSpec {
   int threads = 0;           // excluded: threads of sequential addition, growth + FIRE and equilibration (grid/threads.hpp);
                              // the packing does not depend on it
   bool progress = true;      // progress lines on stderr for long generations
+  double checkpoint_seconds = 300;  // equilibrate: least wall time between checkpoints (generate_packing)
 };
 
 /// The radius distribution a spec names (r_min = 1). Throws InputError.
@@ -61,7 +63,25 @@ double check_packing_spec(const PackingSpec& spec);
 /// stored as attributes. Throws InputError for bad or unreachable requests
 /// (the message gives the estimate of the highest reachable nu) and for runs
 /// that do not converge within their step budget; nothing is written.
-Packing generate_packing(const PackingSpec& spec);
+///
+/// An equilibration can be resumed: every equilibrated packing records its
+/// random generator's state and running totals, and generate_packing(spec,
+/// &from) continues `from` (the same spec at fewer or as many sweeps, see
+/// resume_mismatch) to spec.sweeps. The result is the uninterrupted run's,
+/// bit for bit. `checkpoint`, if given, receives the packing part-way (its
+/// attributes those of the same spec at the sweeps done) at most every
+/// spec.checkpoint_seconds of a long equilibration.
+using PackingCheckpoint = std::function<void(const Packing& partial)>;
+Packing generate_packing(const PackingSpec& spec, const Packing* from = nullptr,
+                         const PackingCheckpoint& checkpoint = {});
+
+/// Why generate_packing(spec, &from) cannot resume from `from` ("" when it
+/// can): not an equilibration of the same packing, one without the recorded
+/// state, one further than spec.sweeps, or one failing packing_mismatch.
+std::string resume_mismatch(const Packing& from, const PackingSpec& spec);
+
+/// Monte Carlo sweeps a packing records (0 when not equilibrated).
+std::uint64_t equilibration_sweeps_done(const Packing& p);
 
 /// Relative tolerance on the achieved packing fraction of a generated packing.
 inline constexpr double kNuRelTol = 1e-12;
@@ -69,6 +89,10 @@ inline constexpr double kNuRelTol = 1e-12;
 /// The one identity of a packing: every field of spec that changes the
 /// packing, and the generator version (stored as the "cache_key" attribute).
 std::string packing_key(const PackingSpec& spec);
+
+/// packing_key without the sweeps: the same for every stage of one
+/// equilibration (stored as the "equilibration_chain" attribute).
+std::string equilibration_chain_key(const PackingSpec& spec);
 
 /// Why p is not the packing spec generates ("" when it is): its recorded key,
 /// N, d, boundary, achieved nu, and (excluded volume) its overlaps.

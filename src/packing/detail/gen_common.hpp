@@ -3,6 +3,7 @@
 #pragma once
 #include <cstdint>
 #include <random>
+#include <sstream>
 #include <string>
 
 #include "grid/geometry.hpp"
@@ -16,6 +17,21 @@ class GenRng {
   explicit GenRng(std::uint64_t seed) : eng_(seed) {}
   double uniform() { return static_cast<double>(eng_() >> 11) * 0x1.0p-53; }
   std::uint64_t bits() { return eng_(); }
+  /// The engine's full state as text (the standard's stream format), for
+  /// resuming a generation exactly where it stopped.
+  std::string state() const {
+    std::ostringstream o;
+    o << eng_;
+    return o.str();
+  }
+  /// Restores state(); false (and the engine unchanged) if s is not one.
+  bool restore(const std::string& s) {
+    std::istringstream i(s);
+    std::mt19937_64 e;
+    if (!(i >> e)) return false;
+    eng_ = e;
+    return true;
+  }
 
  private:
   std::mt19937_64 eng_;

@@ -201,36 +201,49 @@ class Checkerboard {
 };
 
 template <int D, Boundary B>
-Equilibration run(const std::array<double, 3>& box3, const std::vector<double>& radii, std::vector<double>& pos,
-                  int sweeps, int threads, GenRng& rng, Progress& progress) {
+void run(const std::array<double, 3>& box3, const std::vector<double>& radii, std::vector<double>& pos,
+         std::uint64_t target, int threads, GenRng& rng, Progress& progress, Equilibration& e,
+         const EquilibrationCheckpoint& checkpoint, double checkpoint_seconds) {
   Extent<D> box;
   for (int k = 0; k < D; ++k) box[k] = box3[k];
   Checkerboard<D, B> board(box, radii, pos);
   const int T = resolve_threads(threads);
-  Tally sum;
-  for (int sweep = 0; sweep < sweeps; ++sweep) {
-    sum += board.sweep(rng, T);
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "sweep %d, acceptance %.2f (moves), %.2f (swaps)", sweep + 1,
-                  static_cast<double>(sum.accepted) / static_cast<double>(std::max<std::uint64_t>(sum.proposed, 1)),
-                  static_cast<double>(sum.swapped) / static_cast<double>(std::max<std::uint64_t>(sum.swaps, 1)));
-    progress.update(static_cast<double>(sweep + 1) / sweeps, buf);
+  const std::uint64_t first = e.sweeps;
+  double saved = progress.elapsed();
+  while (e.sweeps < target) {
+    const Tally t = board.sweep(rng, T);
+    e.moves_accepted += t.accepted;
+    e.moves_proposed += t.proposed;
+    e.swaps_accepted += t.swapped;
+    e.swaps_proposed += t.swaps;
+    ++e.sweeps;
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "sweep %llu, acceptance %.2f (moves), %.2f (swaps)",
+                  static_cast<unsigned long long>(e.sweeps), e.displacement_acceptance(), e.swap_acceptance());
+    progress.update(static_cast<double>(e.sweeps - first) / static_cast<double>(target - first), buf);
+    if (checkpoint && e.sweeps < target && progress.elapsed() - saved >= checkpoint_seconds) {
+      checkpoint(e);
+      saved = progress.elapsed();
+    }
   }
-  Equilibration e;
-  if (sum.proposed) e.displacement_acceptance = static_cast<double>(sum.accepted) / static_cast<double>(sum.proposed);
-  if (sum.swaps) e.swap_acceptance = static_cast<double>(sum.swapped) / static_cast<double>(sum.swaps);
-  return e;
 }
 
 }  // namespace
 
-Equilibration equilibrate(int d, Boundary b, const std::array<double, 3>& box, const std::vector<double>& radii,
-                          std::vector<double>& pos, int sweeps, int threads, GenRng& rng, Progress& progress) {
-  if (d == 2)
-    return b == Boundary::walls ? run<2, Boundary::walls>(box, radii, pos, sweeps, threads, rng, progress)
-                                : run<2, Boundary::periodic>(box, radii, pos, sweeps, threads, rng, progress);
-  return b == Boundary::walls ? run<3, Boundary::walls>(box, radii, pos, sweeps, threads, rng, progress)
-                              : run<3, Boundary::periodic>(box, radii, pos, sweeps, threads, rng, progress);
+void equilibrate(int d, Boundary b, const std::array<double, 3>& box, const std::vector<double>& radii,
+                 std::vector<double>& pos, std::uint64_t target, int threads, GenRng& rng, Progress& progress,
+                 Equilibration& e, const EquilibrationCheckpoint& checkpoint, double checkpoint_seconds) {
+  const auto go = [&](auto run_one) {
+    run_one(box, radii, pos, target, threads, rng, progress, e, checkpoint, checkpoint_seconds);
+  };
+  if (d == 2) {
+    if (b == Boundary::walls) go(run<2, Boundary::walls>);
+    else go(run<2, Boundary::periodic>);
+  } else if (b == Boundary::walls) {
+    go(run<3, Boundary::walls>);
+  } else {
+    go(run<3, Boundary::periodic>);
+  }
 }
 
 }  // namespace hgrid::detail

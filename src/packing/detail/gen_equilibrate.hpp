@@ -29,6 +29,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "packing/detail/gen_common.hpp"
@@ -41,18 +42,36 @@ inline constexpr double kMcStep = 0.2;
 /// Phys. Rev. X 7 (2017) 021039, use 0.2).
 inline constexpr double kSwapFraction = 0.2;
 
+/// Running totals of an equilibration, carried across resumptions (stored
+/// as packing attributes): sweeps done and trials by kind.
 struct Equilibration {
-  double displacement_acceptance = 0;  // accepted / proposed displacements
-  double swap_acceptance = 0;          // accepted / proposed swaps
+  std::uint64_t sweeps = 0;
+  std::uint64_t moves_accepted = 0, moves_proposed = 0, swaps_accepted = 0, swaps_proposed = 0;
+  double displacement_acceptance() const { return ratio(moves_accepted, moves_proposed); }
+  double swap_acceptance() const { return ratio(swaps_accepted, swaps_proposed); }
+
+ private:
+  static double ratio(std::uint64_t a, std::uint64_t b) {
+    return b ? static_cast<double>(a) / static_cast<double>(b) : 0.0;
+  }
 };
+
+/// Called between sweeps (not after the last), at most every
+/// checkpoint_seconds of wall time, with pos and rng as after e.sweeps
+/// sweeps: what resuming needs.
+using EquilibrationCheckpoint = std::function<void(const Equilibration& e)>;
 
 /// Domains are at least (1 + kDomainMargin) largest diameters wide, so that
 /// rounding cannot make a search reach a domain two away.
 inline constexpr double kDomainMargin = 1e-6;
 
-/// `threads` as in grid/threads.hpp (0 = all cores); the result does not
-/// depend on it.
-Equilibration equilibrate(int d, Boundary b, const std::array<double, 3>& box, const std::vector<double>& radii,
-                          std::vector<double>& pos, int sweeps, int threads, GenRng& rng, Progress& progress);
+/// Runs sweeps until e.sweeps == target (e: the totals so far; zero for a
+/// fresh start). A sweep draws only from rng and reads only pos, so a run
+/// resumed from a checkpoint's pos, rng state and e is the uninterrupted
+/// run, bit for bit. `threads` as in grid/threads.hpp (0 = all cores); the
+/// result does not depend on it.
+void equilibrate(int d, Boundary b, const std::array<double, 3>& box, const std::vector<double>& radii,
+                 std::vector<double>& pos, std::uint64_t target, int threads, GenRng& rng, Progress& progress,
+                 Equilibration& e, const EquilibrationCheckpoint& checkpoint = {}, double checkpoint_seconds = 300);
 
 }  // namespace hgrid::detail
