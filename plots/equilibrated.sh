@@ -10,7 +10,8 @@
 # results/equilibrated[-SCALE].csv and prints it as a Markdown table.
 # Usage: plots/equilibrated.sh [SCALE]   (default: 6 packings x 3 states, N = 10^5, ~4 min; long: up to 10^4
 #        sweeps at N = 3·10^4-10^5 (periodic; walls: the walls scale), ~30 min on 2 cores; walls: walled against periodic, N = 3000,
-#        nu = 0.4-0.6, up to 10^5 sweeps, several seeds, ~50 min; smoke: 2 x 2 at 10^4)
+#        nu = 0.4-0.6, up to 10^5 sweeps, several seeds, ~50 min; walls-long: nu = 0.6 walled and periodic
+#        up to 10^6 sweeps, each stage resumed from the one before, ~45 min; smoke: 2 x 2 at 10^4)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scale=${1:-default}
@@ -42,6 +43,9 @@ points_walls="
 -3 10 0.5 3000 periodic 0,10000,100000 1,2
 -3 10 0.6 3000 walls 0,10000,100000 1,2
 -3 10 0.6 3000 periodic 0,10000,100000 1,2"
+points_walls_long="
+-3 10 0.6 3000 walls 0,100000,300000,1000000
+-3 10 0.6 3000 periodic 0,100000,300000,1000000"
 points_smoke="
 -3 10 0.6 10000 periodic 0,20
 -3 10 0.6 3000 walls 0,20"
@@ -49,6 +53,7 @@ case "$scale" in
   smoke) points=$points_smoke ;;
   long) points=$points_long ;;
   walls) points=$points_walls ;;
+  walls-long) points=$points_walls_long ;;
   *) points=$points_default ;;
 esac
 suffix=$([ "$scale" = default ] && echo "" || echo "-$scale")
