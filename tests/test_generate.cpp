@@ -258,6 +258,32 @@ TEST(Generate, EquilibrationIsTheSameForAnyThreadCount) {
   }
 }
 
+// The placement method: growth always compresses (sequential addition at
+// nu = 0.35, then growth + FIRE), even where sequential addition alone
+// would reach nu; rsa refuses where sequential addition stalls, naming the
+// field; random centres take no method.
+TEST(Generate, PlacementMethodIsObeyed) {
+  auto s = spec(3, 3000, 0.5, -3, 10, Placement::excluded, Boundary::walls);
+  EXPECT_EQ(generate_packing(s).str_attrs.at("method"), "rsa");
+  s.method = ExcludedMethod::growth;
+  const Packing grown = generate_packing(s);
+  EXPECT_EQ(grown.str_attrs.at("method"), "rsa+growth+fire");
+  EXPECT_NEAR(grown.packing_fraction() / 0.5, 1.0, kNuTol);
+  EXPECT_LE(assess_packing(grown, nullptr).max_rel_overlap, kRelaxedOverlapTol);
+  auto stalls = spec(3, 400, 0.45, 0, 1.5, Placement::excluded);
+  stalls.method = ExcludedMethod::rsa;
+  try {
+    generate_packing(stalls);
+    ADD_FAILURE() << "sequential addition alone should stall";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("method"), std::string::npos) << e.what();
+  }
+  auto random = spec(3, 100, 0.3, -3, 10, Placement::random);
+  random.method = ExcludedMethod::growth;
+  EXPECT_THROW(generate_packing(random), InputError);
+  EXPECT_THROW(parse_excluded_method("shake"), InputError);
+}
+
 // A long equilibration can be resumed: from a finished stage (fewer sweeps,
 // through a file, so the recorded generator state is what resumes), from a
 // checkpoint of a run killed part-way, and through the cache. Each gives the

@@ -321,6 +321,8 @@ TEST_F(Hostile, SmallerOnes) {
   expect_refused("generate --n 10 --nu 0.1 --placement excluded --sweeps 5 --out " + path("x.h5"), "sweeps");
   expect_refused("generate --n 10 --nu 0.1 --placement excluded --sweeps 20000000 --equilibrate --out " + path("x.h5"),
                  "sweeps");
+  expect_refused("generate --n 10 --nu 0.1 --placement excluded --method shake --out " + path("x.h5"), "method");
+  expect_refused("generate --n 10 --nu 0.1 --method growth --out " + path("x.h5"), "method");
   // Continuing an equilibration: only with --equilibrate and --out, and only
   // one of the same packing at fewer sweeps.
   ASSERT_EQ(hgrid_run("generate --n 300 --nu 0.3 --omega 4 --placement excluded --equilibrate --sweeps 5 --out " +

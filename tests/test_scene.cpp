@@ -85,6 +85,20 @@ TEST(Scene, RejectsBadInput) {
   expect_error_naming(excluded + "sweeps = 5\n", "packings.sweeps");
   expect_error_naming(excluded + "equilibrate = true\nsweeps = 0\n", "packings.sweeps");
   expect_error_naming(excluded + "equilibrate = true\nsweeps = 2.5\n", "packings.sweeps");
+  expect_error_naming(excluded + "method = \"shake\"\n", "packings.method");
+  expect_error_naming("name = \"t\"\n[packings]\nn = 10\nnu = 0.1\nmethod = \"growth\"\n", "packings.method");
+}
+
+TEST(Scene, PlacementMethodReachesTheExcludedPackingsOnly) {
+  const Scene s = load_scene(write_scene("method", "name = \"t\"\n[packings]\nn = 10\nnu = 0.1\nplacement = "
+                                                   "[\"excluded\", \"random\"]\nmethod = \"growth\"\n"),
+                             "default");
+  ASSERT_EQ(s.points.size(), 2u);
+  EXPECT_EQ(s.points[0].packing.method, ExcludedMethod::growth);
+  EXPECT_EQ(s.points[1].packing.method, ExcludedMethod::automatic);
+  auto other = s.points[0].packing;
+  other.method = ExcludedMethod::automatic;
+  EXPECT_NE(packing_key(other), packing_key(s.points[0].packing));
 }
 
 TEST(Scene, EquilibrationSweepsReachThePackings) {

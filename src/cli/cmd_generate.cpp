@@ -19,7 +19,7 @@ namespace {
 
 struct GenerateOptions {
   PackingSpec spec;
-  std::string boundary = "periodic", placement = "random", out, cache_dir, from;
+  std::string boundary = "periodic", placement = "random", method = "auto", out, cache_dir, from;
   bool quiet = false;
   bool sweeps_given = false;
 };
@@ -27,6 +27,7 @@ struct GenerateOptions {
 void run_generate(GenerateOptions o) {
   o.spec.boundary = parse_boundary(o.boundary);
   o.spec.placement = parse_placement(o.placement);
+  o.spec.method = parse_excluded_method(o.method);
   o.spec.progress = !o.quiet;
   if (o.out.empty() == o.cache_dir.empty()) throw InputError("out", "give exactly one of --out FILE and --cache DIR");
   if (o.spec.equilibrate && o.spec.placement != Placement::excluded)
@@ -72,6 +73,10 @@ void register_generate_commands(CLI::App& app) {
   sub->add_option("--boundary", o->boundary, "periodic|walls")->default_val("periodic");
   sub->add_option("--placement", o->placement, "random (independent centres) | excluded (no overlaps)")
       ->default_val("random");
+  sub->add_option("--method", o->method,
+                  "excluded: auto (sequential addition, growth + FIRE where it stalls) | rsa (sequential addition "
+                  "only) | growth (sequential addition at nu = 0.35, then growth + FIRE)")
+      ->default_val("auto");
   sub->add_flag("--equilibrate", o->spec.equilibrate,
                 "excluded: hard-sphere Monte Carlo after placement (displacements and swaps of two particles)");
   auto* sweeps = sub->add_option("--sweeps", o->spec.sweeps,

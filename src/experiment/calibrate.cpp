@@ -32,7 +32,8 @@ PackingSpec spec(int d, Placement placement, Boundary boundary, double alpha, do
 
 bool same_packing(const PackingSpec& a, const PackingSpec& b) {
   return a.d == b.d && a.n == b.n && a.nu == b.nu && a.dist == b.dist && a.alpha == b.alpha && a.omega == b.omega &&
-         a.sigma == b.sigma && a.boundary == b.boundary && a.placement == b.placement && a.seed == b.seed &&
+         a.sigma == b.sigma && a.boundary == b.boundary && a.placement == b.placement && a.method == b.method &&
+         a.seed == b.seed &&
          a.equilibrate == b.equilibrate && a.sweeps == b.sweeps;
 }
 

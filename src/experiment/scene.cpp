@@ -22,7 +22,8 @@ using detail::numbers;
 using detail::strings;
 
 const detail::SceneSections kSections = {
-    {"packings", {"d", "n", "nu", "alpha", "omega", "sigma", "dist", "boundary", "placement", "seeds", "equilibrate", "sweeps"}}};
+    {"packings", {"d", "n", "nu", "alpha", "omega", "sigma", "dist", "boundary", "placement", "method", "seeds",
+                  "equilibrate", "sweeps"}}};
 
 /// The packing lists of a scene, before expansion.
 struct PackingLists {
@@ -31,6 +32,8 @@ struct PackingLists {
   bool equilibrate = false;
   std::int64_t sweeps = kDefaultEquilibrationSweeps;
   bool sweeps_given = false;
+  ExcludedMethod method = ExcludedMethod::automatic;
+  bool method_given = false;
 };
 
 void read_packings(const toml::table& t, PackingLists& p, const std::string& where) {
@@ -48,7 +51,10 @@ void read_packings(const toml::table& t, PackingLists& p, const std::string& whe
     else if (key == "dist") p.dist = strings(v, name);
     else if (key == "boundary") p.boundary = strings(v, name);
     else if (key == "placement") p.placement = strings(v, name);
-    else if (key == "equilibrate") {
+    else if (key == "method") {
+      p.method = parse_excluded_method(detail::one_string(v, name), name);
+      p.method_given = true;
+    } else if (key == "equilibrate") {
       auto b = v.value<bool>();
       if (!b) throw InputError(name, "must be true or false");
       p.equilibrate = *b;
@@ -81,8 +87,9 @@ void check_lists(const PackingLists& p) {
   for (const auto& s : p.dist)
     if (s != "powerlaw" && s != "lognormal") throw InputError("packings.dist", "must be 'powerlaw' or 'lognormal'");
   for (const auto& s : p.boundary) parse_boundary(s, "packings.boundary");
-  for (const auto& s : p.placement)
-    parse_placement(s, "packings.placement");
+  bool excluded = false;
+  for (const auto& s : p.placement) excluded |= parse_placement(s, "packings.placement") == Placement::excluded;
+  if (p.method_given && !excluded) throw InputError("packings.method", "only applies to placement = \"excluded\"");
 }
 
 void read_grid(const toml::table& t, SceneGrid& g) {
@@ -133,6 +140,7 @@ std::string describe_point(const Scene& scene, std::size_t i) {
   if (p.dist == "lognormal") out << " lognormal sigma=" << p.sigma;
   else out << " alpha=" << p.alpha;
   out << " omega=" << p.omega << " " << to_string(p.boundary) << " " << to_string(p.placement)
+      << (p.method != ExcludedMethod::automatic ? std::string(" method=") + to_string(p.method) : std::string())
       << (p.equilibrate ? " equilibrated" : "") << " seed=" << p.seed << ", " << to_string(scene.points[i].search)
       << ")";
   return out.str();
@@ -200,6 +208,7 @@ Scene load_scene_text(const std::string& text, const std::string& scale, const s
                         p.boundary = parse_boundary(bnd);
                         p.placement = parse_placement(plc);
                         p.seed = static_cast<std::uint64_t>(seed);
+                        if (p.placement == Placement::excluded) p.method = lists.method;
                         p.equilibrate = lists.equilibrate;
                         p.sweeps = static_cast<int>(lists.sweeps);
                         pt.search = search;

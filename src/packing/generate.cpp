@@ -42,6 +42,8 @@ void check_spec(const PackingSpec& s) {
   if (!(std::isfinite(s.nu) && s.nu > 0 && s.nu < 1)) throw InputError("nu", "must be in (0, 1) (got " + brief(s.nu) + ")");
   if (s.equilibrate && s.placement != Placement::excluded)
     throw InputError("equilibrate", "only applies to excluded-volume placement");
+  if (s.method != ExcludedMethod::automatic && s.placement != Placement::excluded)
+    throw InputError("method", "only applies to excluded-volume placement");
   check_threads(s.threads);
   if (s.sweeps < 1 || s.sweeps > kMaxEquilibrationSweeps)
     throw InputError("sweeps", "must be in [1, " + std::to_string(kMaxEquilibrationSweeps) + "] (got " +
@@ -88,13 +90,19 @@ void place_excluded(const PackingSpec& s, double rcp, detail::GenRng& rng, Packi
   std::iota(order.begin(), order.end(), 0u);
   std::stable_sort(order.begin(), order.end(), [&](auto a, auto b) { return p.radii[a] > p.radii[b]; });
   Progress progress(s.progress, "excluded-volume placement (sequential addition)");
-  const std::size_t placed = detail::rsa_place(s.d, s.boundary, p.box, p.radii, order, 1.0, resolve_threads(s.threads), rng,
-                                                 p.positions, progress);
+  const std::size_t placed =
+      s.method == ExcludedMethod::growth
+          ? 0
+          : detail::rsa_place(s.d, s.boundary, p.box, p.radii, order, 1.0, resolve_threads(s.threads), rng,
+                              p.positions, progress);
   if (placed == s.n) {
     p.str_attrs["method"] = "rsa";
     return;
   }
-  if (s.progress)
+  if (s.method == ExcludedMethod::rsa)
+    throw InputError("method", unreachable(s, rcp, "sequential addition stalls after " + std::to_string(placed) +
+                                                       " of " + std::to_string(s.n) + " particles (method 'rsa')"));
+  if (s.progress && s.method == ExcludedMethod::automatic)
     std::fprintf(stderr, "  sequential addition stalled after %zu of %zu particles; growing from nu = %g instead\n",
                  placed, s.n, std::min(s.nu, kGrowthStartNu));
   // Growth route: sequential addition at a lower nu, then grow and relax.
@@ -128,6 +136,13 @@ void place_excluded(const PackingSpec& s, double rcp, detail::GenRng& rng, Packi
 
 
 }  // namespace
+
+ExcludedMethod parse_excluded_method(const std::string& s, const std::string& field) {
+  if (s == "auto") return ExcludedMethod::automatic;
+  if (s == "rsa") return ExcludedMethod::rsa;
+  if (s == "growth") return ExcludedMethod::growth;
+  throw InputError(field, "must be 'auto', 'rsa' or 'growth' (got '" + s + "')");
+}
 
 Placement parse_placement(const std::string& s, const std::string& field) {
   if (s == "random") return Placement::random;
@@ -321,6 +336,9 @@ std::string packing_key(const PackingSpec& s) {
                   " n=" + std::to_string(s.n) + " nu=" + format_number(s.nu) + " dist=" + s.dist;
   k += s.dist == "lognormal" ? " sigma=" + format_number(s.sigma) : " alpha=" + format_number(s.alpha);
   k += " omega=" + format_number(s.omega) + " boundary=" + to_string(s.boundary) + " placement=" + to_string(s.placement) +
+       (s.placement == Placement::excluded && s.method != ExcludedMethod::automatic
+            ? std::string(" method=") + to_string(s.method)
+            : std::string()) +
        " seed=" + std::to_string(s.seed) + " equilibrate=" + (s.equilibrate ? "1 checkerboard sweeps=" + std::to_string(s.sweeps) : "0");
   return k;
 }

@@ -21,6 +21,18 @@ inline const char* to_string(Placement p) { return p == Placement::random ? "ran
 /// "random" | "excluded"; anything else throws InputError naming `field`.
 Placement parse_placement(const std::string& s, const std::string& field = "placement");
 
+/// How excluded-volume placement reaches nu: largest-first random sequential
+/// addition, falling back to growth where it stalls (automatic); sequential
+/// addition only (refused where it stalls); or always growth: sequential
+/// addition at nu = 0.35 (or nu if lower), then all radii grown with FIRE
+/// relaxation to nu.
+enum class ExcludedMethod { automatic, rsa, growth };
+/// "auto" | "rsa" | "growth"; anything else throws InputError naming `field`.
+ExcludedMethod parse_excluded_method(const std::string& s, const std::string& field = "method");
+inline const char* to_string(ExcludedMethod m) {
+  return m == ExcludedMethod::automatic ? "auto" : m == ExcludedMethod::rsa ? "rsa" : "growth";
+}
+
 /// Everything that determines a generated packing (and its cache key).
 /// Monte Carlo sweeps of an equilibration unless a spec says otherwise.
 inline constexpr int kDefaultEquilibrationSweeps = 20;
@@ -35,6 +47,7 @@ struct PackingSpec {
   double sigma = 0.5;              // lognormal: sigma of ln r (median at sqrt(omega))
   Boundary boundary = Boundary::periodic;
   Placement placement = Placement::random;
+  ExcludedMethod method = ExcludedMethod::automatic;  // excluded placement only
   std::uint64_t seed = 1;
   bool equilibrate = false;  // excluded only: hard-sphere equilibration after placement
   int sweeps = kDefaultEquilibrationSweeps;  // equilibrate: Monte Carlo sweeps (n trials each)

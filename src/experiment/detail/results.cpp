@@ -42,6 +42,7 @@ nlohmann::json detail::result_to_json(const PointResult& r) {
           {"sigma", s.sigma},
           {"boundary", to_string(s.boundary)},
           {"placement", to_string(s.placement)},
+          {"method", to_string(s.method)},
           {"seed", s.seed},
           {"equilibrate", s.equilibrate},
           {"sweeps", s.sweeps},
@@ -122,6 +123,8 @@ PointResult detail::result_from_json(const nlohmann::json& j) {
   s.sigma = finite_of(j, "sigma");
   s.boundary = parse_boundary(text_of(j, "boundary"));
   s.placement = parse_placement(text_of(j, "placement"));
+  // Journals written before the placement method was a parameter have none.
+  if (j.contains("method")) s.method = parse_excluded_method(text_of(j, "method"));
   s.seed = count_of(j, "seed");
   if (!field(j, "equilibrate").is_boolean()) throw InputError("equilibrate", "must be true or false");
   s.equilibrate = field(j, "equilibrate").get<bool>();
