@@ -33,6 +33,10 @@ plot() {
 }
 plot plots/fig11.gp "results/fig11$suffix.csv" fig11-measured-vs-model-nu "$(values "results/fig11$suffix.csv" omega)"
 plot plots/fig12.gp "results/fig12$suffix.csv" fig12-measured-vs-model-n "$(values "results/fig12$suffix.csv" alpha | tr ' ' '\n' | sort -gr | tr '\n' ' ')"
+if [ -f "results/fig12_growth$suffix.csv" ]; then  # `hgrid run experiments/fig12_growth.toml` (not run here)
+  plot plots/fig12.gp "results/fig12_growth$suffix.csv" fig12-growth-measured-vs-model-n \
+    "$(values "results/fig12_growth$suffix.csv" alpha | tr ' ' '\n' | sort -gr | tr '\n' ' ')"
+fi
 bash plots/model_errors.sh "$scale"
 bash plots/excess_by_level.sh "$scale"
 bash plots/slice_by_level.sh "$scale"

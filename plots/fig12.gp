@@ -13,7 +13,8 @@ set xlabel 'N'
 set ylabel 'T / N  (K = 0.2)'
 set yrange [0:*]
 set grid
-set title sprintf('Fig. 12: {/Symbol n} = 0.6, {/Symbol w} = 10, d = 3, optimal Top-Down sizes (%s)', scale_label)
+packings = strstrt(in, 'fig12_growth') > 0 ? ', packings by compression' : ''
+set title sprintf('Fig. 12: {/Symbol n} = 0.6, {/Symbol w} = 10, d = 3, optimal Top-Down sizes (%s%s)', scale_label, packings)
 sel(b, a, v) = (strcol("boundary") eq b && abs(column("alpha") - a) < 1e-9) ? v : NaN
 alphas = exists("series") ? series : "0 -1 -2 -3"
 plot for [i=1:words(alphas)] in using (sel("periodic", real(word(alphas,i)), column("n"))):"model_T_over_N" \
