@@ -11,7 +11,8 @@
 # Usage: plots/equilibrated.sh [SCALE]   (default: 6 packings x 3 states, N = 10^5, ~4 min; long: up to 10^4
 #        sweeps at N = 3·10^4-10^5 (periodic; walls: the walls scale), ~30 min on 2 cores; walls: walled against periodic, N = 3000,
 #        nu = 0.4-0.6, up to 10^5 sweeps, several seeds, ~50 min; walls-long: nu = 0.6 walled and periodic
-#        up to 10^6 sweeps, each stage resumed from the one before, ~45 min; smoke: 2 x 2 at 10^4)
+#        up to 10^6 sweeps, each stage resumed from the one before, ~45 min; compressed: packings by compression
+#        (sequential addition at nu = 0.35, growth + FIRE) before and after Monte Carlo, against sequential addition, ~45 min; smoke: 2 x 2 at 10^4)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scale=${1:-default}
@@ -21,6 +22,7 @@ if ! command -v jq >/dev/null 2>&1; then
   exit 0
 fi
 # alpha omega nu n boundary sweeps (comma-separated; 0 = as placed) [seeds, comma-separated; default 1]
+# [method: auto (default) | rsa | growth, hgrid generate --method]
 points_default="
 -3 10 0.6 100000 periodic 0,20,200
 -2 10 0.6 100000 periodic 0,20,200
@@ -46,6 +48,15 @@ points_walls="
 points_walls_long="
 -3 10 0.6 3000 walls 0,100000,300000,1000000
 -3 10 0.6 3000 periodic 0,100000,300000,1000000"
+points_compressed="
+-3 100 0.6 30000 periodic 0,1000,3000,10000 1 growth
+-3 100 0.6 30000 periodic 0,1000,3000,10000 1 auto
+-3 10 0.6 3000 walls 0,10000,100000 1,2 growth
+-3 10 0.6 3000 periodic 0,10000,100000 1,2 growth
+-3 10 0.6 30000 periodic 0,10000 1 growth
+-2 10 0.6 30000 periodic 0,10000 1 growth
+-3 10 0.6 10000 walls 0,10000,100000 1 growth
+-3 10 0.6 10000 walls 0,10000,100000 1 auto"
 points_smoke="
 -3 10 0.6 10000 periodic 0,20
 -3 10 0.6 3000 walls 0,20"
@@ -54,6 +65,7 @@ case "$scale" in
   long) points=$points_long ;;
   walls) points=$points_walls ;;
   walls-long) points=$points_walls_long ;;
+  compressed) points=$points_compressed ;;
   *) points=$points_default ;;
 esac
 suffix=$([ "$scale" = default ] && echo "" || echo "-$scale")
@@ -65,29 +77,30 @@ trap 'rm -f "$tmp"' EXIT
   echo "# 3D excluded-volume packings, seed 1 unless said, as placed (sweeps = 0) and after hard-sphere Monte Carlo with swaps; hgrid count with optimal Top-Down sizes (K = 0.2)"
   echo "# error_excluded = measured / excluded-volume model - 1 (T/N); level1_own_* = level 1's own-level narrow-phase checks"
   echo "# git_hash=$(git rev-parse --short=12 HEAD 2>/dev/null || echo unknown) machine=$(grep -m1 'model name' /proc/cpuinfo 2>/dev/null | cut -d: -f2 | sed 's/^ //' || echo unknown)"
-  echo "boundary,alpha,omega,nu,n,sweeps,swap_acceptance,T_over_N,model_T_over_N,model_excluded_T_over_N,error_paper,error_excluded,level1_own_measured,level1_own_model_excluded,seed"
-  while read -r alpha omega nu n boundary sweeps_list seeds; do
+  echo "boundary,alpha,omega,nu,n,sweeps,swap_acceptance,T_over_N,model_T_over_N,model_excluded_T_over_N,error_paper,error_excluded,level1_own_measured,level1_own_model_excluded,seed,method"
+  while read -r alpha omega nu n boundary sweeps_list seeds method; do
     [ -z "$alpha" ] && continue
     seeds=${seeds:-1}
+    method=${method:-auto}
     for seed in ${seeds//,/ }; do
       for sweeps in ${sweeps_list//,/ }; do
-        echo "plots/equilibrated.sh: alpha=$alpha omega=$omega nu=$nu n=$n $boundary sweeps=$sweeps seed=$seed" >&2
+        echo "plots/equilibrated.sh: alpha=$alpha omega=$omega nu=$nu n=$n $boundary method=$method sweeps=$sweeps seed=$seed" >&2
         eq=()
         [ "$sweeps" -gt 0 ] && eq=(--equilibrate --sweeps "$sweeps")
         f=$("$hgrid" generate --n "$n" --nu "$nu" --alpha "$alpha" --omega "$omega" --boundary "$boundary" \
-              --placement excluded ${eq[@]+"${eq[@]}"} --seed "$seed" --cache results/packings --quiet | tail -1)
+              --placement excluded --method "$method" ${eq[@]+"${eq[@]}"} --seed "$seed" --cache results/packings --quiet | tail -1)
         acc=$("$hgrid" info "$f" --json | jq '.attributes.equilibration_swap_acceptance // 0')
         "$hgrid" count "$f" --cells optimal --threads 1 --json 2>/dev/null |
-          jq -r --arg seed "$seed" --arg a "$alpha" --arg w "$omega" --arg nu "$nu" --arg s "$sweeps" --arg acc "$acc" \
+          jq -r --arg seed "$seed" --arg m "$method" --arg a "$alpha" --arg w "$omega" --arg nu "$nu" --arg s "$sweeps" --arg acc "$acc" \
             '[.boundary, $a, $w, $nu, .n, $s, $acc, .T_over_N, .model_T_over_N, .model_excluded_T_over_N,
               (.T_over_N / .model_T_over_N - 1), (.T_over_N / .model_excluded_T_over_N - 1),
               .per_level[0].narrow_phase_checks_by_level_searched[0],
-              .per_level[0].model_excluded_narrow_phase_checks_by_level_searched[0], $seed] | @csv' | tr -d '"'
+              .per_level[0].model_excluded_narrow_phase_checks_by_level_searched[0], $seed, $m] | @csv' | tr -d '"'
       done
     done
   done <<< "$points"
 } > "$tmp"
 mv "$tmp" "$csv"
-echo "| boundary | alpha | omega | nu | N | seed | MC sweeps | swap acceptance | measured T/N | excluded-volume model | level 1 own checks, measured / model |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|"
-grep -v '^#' "$csv" | tail -n +2 | awk -F, '{printf "| %s | %s | %s | %s | %s | %s | %s | %.2f | %.3f | %+.2f %% | %.3f |\n", $1, $2, $3, $4, $5, ($15 == "" ? 1 : $15), $6, $7, $8, 100 * $12, $13 / $14}'
+echo "| boundary | alpha | omega | nu | N | seed | placement | MC sweeps | swap acceptance | measured T/N | excluded-volume model | level 1 own checks, measured / model |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
+grep -v '^#' "$csv" | tail -n +2 | awk -F, '{printf "| %s | %s | %s | %s | %s | %s | %s | %s | %.2f | %.3f | %+.2f %% | %.3f |\n", $1, $2, $3, $4, $5, ($15 == "" ? 1 : $15), ($16 == "" ? "auto" : $16), $6, $7, $8, 100 * $12, $13 / $14}'

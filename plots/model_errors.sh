@@ -3,7 +3,8 @@
 # and 12: measured T/N, and measured / predicted - 1 for the paper's model
 # (random centres) and the excluded-volume model. Reads results/fig11[-S].csv,
 # fig12[-S].csv and, if there, fig11_equilibrated[-S].csv,
-# fig12_equilibrated[-S].csv and fig12_growth[-S].csv; writes
+# fig12_equilibrated[-S].csv, fig12_growth[-S].csv and
+# fig12_growth_equilibrated[-S].csv; writes
 # paper_figs/model-errors[-S].md.
 # Usage: plots/model_errors.sh [SCALE]
 set -euo pipefail
@@ -50,6 +51,10 @@ table() {  # CSV TITLE: one row per excluded-volume point
   if [ -f "results/fig12_growth$suffix.csv" ]; then
     table "results/fig12_growth$suffix.csv" \
       "Figure 12, packings by compression (sequential addition at nu = 0.35, then growth + FIRE; \`hgrid run experiments/fig12_growth.toml --scale $scale\`, not part of make figures)"
+  fi
+  if [ -f "results/fig12_growth_equilibrated$suffix.csv" ]; then
+    table "results/fig12_growth_equilibrated$suffix.csv" \
+      "Figure 12, N <= 3·10^4, packings by compression, then equilibrated (10^4 sweeps of Monte Carlo with swaps; \`hgrid run experiments/fig12_growth_equilibrated.toml --jobs 2\`, not part of make figures)"
   fi
 } > "$tmp"
 mv -f "$tmp" "$out"
