@@ -286,7 +286,8 @@ TEST(Generate, PlacementMethodIsObeyed) {
 
 // A long equilibration can be resumed: from a finished stage (fewer sweeps,
 // through a file, so the recorded generator state is what resumes), from a
-// checkpoint of a run killed part-way, and through the cache. Each gives the
+// checkpoint of a run killed part-way, from the placement (by sequential
+// addition or compression), and through the cache. Each gives the
 // uninterrupted run's packing, bit for bit, and its acceptance totals.
 TEST(Generate, ResumedEquilibrationIsTheUninterruptedOne) {
   const fs::path dir = temp_dir("resume");
@@ -331,10 +332,33 @@ TEST(Generate, ResumedEquilibrationIsTheUninterruptedOne) {
     other.seed += 1;
     EXPECT_NE(resume_mismatch(stage, other), "");
     EXPECT_NE(resume_mismatch(whole, s10), "");  // further than asked
+    EXPECT_THROW(generate_packing(s10, &whole), std::invalid_argument);
+    // From the placement (sweep 0), through a file; one placed before
+    // placements recorded the generator's state cannot start it.
     auto placed = s;
     placed.equilibrate = false;
-    EXPECT_NE(resume_mismatch(generate_packing(placed), s), "");
-    EXPECT_THROW(generate_packing(s10, &whole), std::invalid_argument);
+    write_packing((dir / "placed.h5").string(), generate_packing(placed));
+    const Packing placement = read_packing((dir / "placed.h5").string());
+    EXPECT_EQ(resume_mismatch(placement, s), "");
+    EXPECT_NE(resume_mismatch(placement, other), "");
+    same(generate_packing(s, &placement));
+    Packing older = placement;
+    older.str_attrs.erase("equilibration_rng_state");
+    EXPECT_NE(resume_mismatch(older, s), "");
+  }
+  // From a placement by compression (sequential addition, growth + FIRE).
+  {
+    auto s = spec(3, 2000, 0.5, -3, 5, Placement::excluded, Boundary::periodic);
+    s.method = ExcludedMethod::growth;
+    s.equilibrate = true;
+    s.sweeps = 20;
+    auto placed = s;
+    placed.equilibrate = false;
+    const Packing placement = generate_packing(placed);
+    ASSERT_EQ(placement.str_attrs.at("method"), "rsa+growth+fire");
+    const Packing whole = generate_packing(s), resumed = generate_packing(s, &placement);
+    EXPECT_EQ(resumed.positions, whole.positions);
+    EXPECT_EQ(resumed.str_attrs.at("equilibration_rng_state"), whole.str_attrs.at("equilibration_rng_state"));
   }
   // The cache: 10 sweeps, then 30 resumes them; 20 afterwards starts afresh
   // and leaves the resume file at 30.
@@ -353,6 +377,14 @@ TEST(Generate, ResumedEquilibrationIsTheUninterruptedOne) {
   EXPECT_EQ(equilibration_sweeps_done(read_packing(resume)), 30u);
   EXPECT_EQ(cached_packing(s20, cache).positions, generate_packing(s20).positions);
   EXPECT_EQ(equilibration_sweeps_done(read_packing(resume)), 30u);
+  // A second cache holding only the placement: the equilibration starts from it.
+  const std::string cache2 = (dir / "cache2").string();
+  auto placed = s;
+  placed.equilibrate = false;
+  cached_packing(placed, cache2);
+  EXPECT_FALSE(fs::exists(equilibration_resume_path(s, cache2)));
+  EXPECT_EQ(cached_packing(s, cache2).positions, whole.positions);
+  EXPECT_EQ(equilibration_sweeps_done(read_packing(equilibration_resume_path(s, cache2))), 30u);
   fs::remove_all(dir);
 }
 

@@ -343,6 +343,16 @@ TEST_F(Hostile, SmallerOnes) {
                       path("eq5.h5") + " --out " + path("x.h5"))
                 .status,
             0);
+  // ... or from its placement (generated without --equilibrate).
+  ASSERT_EQ(hgrid_run("generate --n 300 --nu 0.3 --omega 4 --placement excluded --out " + path("placed.h5")).status, 0);
+  expect_refused("generate --n 300 --nu 0.3 --omega 5 --placement excluded --equilibrate --sweeps 5 --from " +
+                     path("placed.h5") + " --out " + path("y.h5"),
+                 "from");
+  EXPECT_FALSE(fs::exists(path("y.h5")));
+  EXPECT_EQ(hgrid_run("generate --n 300 --nu 0.3 --omega 4 --placement excluded --equilibrate --sweeps 5 --from " +
+                      path("placed.h5") + " --out " + path("y.h5"))
+                .status,
+            0);
   expect_refused("generate --n 10 --nu 0.1 --placement excluded --equilibrate --threads -1 --out " + path("x.h5"),
                  "threads");
   // An unknown option is named as such, even with a required one missing.

@@ -91,11 +91,12 @@ void register_generate_commands(CLI::App& app) {
   sub->add_option("--out", o->out, "output file (.h5)");
   sub->add_option("--cache", o->cache_dir,
                   "instead of --out: reuse or create DIR/<hash>.h5 (path printed); an equilibration resumes from the "
-                  "furthest stage of it cached there (a killed run, or fewer sweeps asked before) and checkpoints "
-                  "every 5 min");
+                  "furthest stage of it cached there (a killed run, or fewer sweeps asked before), else starts from "
+                  "the packing's cached placement, and checkpoints every 5 min");
   sub->add_option("--from", o->from,
                   "with --equilibrate and --out: continue the equilibration recorded in FILE (the same parameters "
-                  "at fewer sweeps) to --sweeps; the result equals the uninterrupted run's");
+                  "at fewer sweeps, or without --equilibrate: its placement) to --sweeps; the result equals the "
+                  "uninterrupted run's");
   sub->add_flag("--quiet", o->quiet, "no progress lines");
   sub->callback([o, sweeps] {
     o->sweeps_given = sweeps->count() > 0;

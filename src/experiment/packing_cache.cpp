@@ -71,9 +71,16 @@ Packing cached_packing(const PackingSpec& s, const std::string& dir) {
   auto from = read_valid(resume, [&](const Packing& q) { return resume_mismatch(q, any); }, false);
   std::uint64_t kept = from ? equilibration_sweeps_done(*from) : 0;
   if (kept > static_cast<std::uint64_t>(s.sweeps)) from.reset();  // further than asked: start afresh, keep it
-  if (from)
+  if (from) {
     std::cerr << "hgrid: resuming the equilibration from " << resume << " at sweep " << kept << " of " << s.sweeps
               << "\n";
+  } else {  // no stage yet: start from the cached placement (sweep 0) if there is one
+    PackingSpec placed = s;
+    placed.equilibrate = false;
+    const std::string start = packing_cache_path(placed, dir);
+    from = read_valid(start, [&](const Packing& q) { return resume_mismatch(q, s); }, false);
+    if (from) std::cerr << "hgrid: equilibrating the cached placement " << start << "\n";
+  }
   const auto keep = [&](const Packing& stage) {
     const std::uint64_t done = equilibration_sweeps_done(stage);
     if (done <= kept) return;

@@ -204,10 +204,12 @@ constexpr const char* kTallyAttrs[4] = {"equilibration_moves_accepted", "equilib
 
 /// Spec, achieved nu and quality attributes of p, generated for s (with
 /// e.sweeps sweeps so far when s.equilibrate; rng: the generator's state
-/// then).
+/// then, recorded for every excluded-volume packing: a placement is where
+/// each equilibration of it starts).
 void describe(Packing& p, const PackingSpec& s, const Distribution& dist, double rcp, const detail::Equilibration& e,
               const detail::GenRng& rng) {
   PackingSpec at = s;
+  if (s.placement == Placement::excluded) p.str_attrs[kRngAttr] = rng.state();
   if (s.equilibrate) {
     at.sweeps = static_cast<int>(e.sweeps);
     p.num_attrs["equilibration_acceptance"] = e.displacement_acceptance();
@@ -216,7 +218,6 @@ void describe(Packing& p, const PackingSpec& s, const Distribution& dist, double
     const std::uint64_t tally[4] = {e.moves_accepted, e.moves_proposed, e.swaps_accepted, e.swaps_proposed};
     for (int k = 0; k < 4; ++k) p.num_attrs[kTallyAttrs[k]] = static_cast<double>(tally[k]);
     p.str_attrs[kChainAttr] = equilibration_chain_key(s);
-    p.str_attrs[kRngAttr] = rng.state();
   }
   p.str_attrs["placement"] = to_string(s.placement);
   p.str_attrs["dist"] = s.dist;
@@ -248,10 +249,22 @@ void describe(Packing& p, const PackingSpec& s, const Distribution& dist, double
     throw std::logic_error("generate_packing: achieved nu " + format_number(q.nu) + " differs from " + format_number(s.nu));
 }
 
+/// Whether p is a placement (generated without equilibration).
+bool is_placement(const Packing& p) {
+  const auto eq = p.num_attrs.find("equilibrate");
+  return eq != p.num_attrs.end() && eq->second == 0;
+}
+
 }  // namespace
 
 std::string resume_mismatch(const Packing& from, const PackingSpec& s) {
   if (!s.equilibrate) return "the requested packing is not equilibrated";
+  if (is_placement(from)) {  // sweep 0 of every equilibration of it
+    if (!from.str_attrs.count(kRngAttr)) return "it records no generator state (placed by an older hgrid)";
+    PackingSpec placed = s;
+    placed.equilibrate = false;
+    return packing_mismatch(from, placed);
+  }
   const auto chain = from.str_attrs.find(kChainAttr);
   if (chain == from.str_attrs.end() || !from.str_attrs.count(kRngAttr) || !from.num_attrs.count("equilibration_sweeps"))
     return "it records no resumable equilibration";
@@ -284,7 +297,8 @@ Packing generate_packing(const PackingSpec& s, const Packing* from, const Packin
       throw std::invalid_argument("generate_packing: cannot resume: unreadable random generator state");
     e.sweeps = equilibration_sweeps_done(*from);
     std::uint64_t* tally[4] = {&e.moves_accepted, &e.moves_proposed, &e.swaps_accepted, &e.swaps_proposed};
-    for (int k = 0; k < 4; ++k) *tally[k] = static_cast<std::uint64_t>(from->num_attrs.at(kTallyAttrs[k]));
+    if (!is_placement(*from))
+      for (int k = 0; k < 4; ++k) *tally[k] = static_cast<std::uint64_t>(from->num_attrs.at(kTallyAttrs[k]));
   } else {
     p.d = s.d;
     p.boundary = s.boundary;
@@ -296,7 +310,9 @@ Packing generate_packing(const PackingSpec& s, const Packing* from, const Packin
   }
   if (s.equilibrate) {
     Progress progress(s.progress, "hard-sphere Monte Carlo equilibration" +
-                                      (from ? " (resumed at sweep " + std::to_string(e.sweeps) + ")" : std::string()));
+                                      (!from ? std::string()
+                                       : e.sweeps == 0 ? std::string(" (from the given placement)")
+                                                       : " (resumed at sweep " + std::to_string(e.sweeps) + ")"));
     detail::EquilibrationCheckpoint save;
     if (checkpoint)
       save = [&](const detail::Equilibration& at) {

@@ -77,10 +77,11 @@ double check_packing_spec(const PackingSpec& spec);
 /// (the message gives the estimate of the highest reachable nu) and for runs
 /// that do not converge within their step budget; nothing is written.
 ///
-/// An equilibration can be resumed: every equilibrated packing records its
-/// random generator's state and running totals, and generate_packing(spec,
-/// &from) continues `from` (the same spec at fewer or as many sweeps, see
-/// resume_mismatch) to spec.sweeps. The result is the uninterrupted run's,
+/// An equilibration can be resumed: every excluded-volume packing records
+/// its random generator's state (an equilibrated one also its running
+/// totals), and generate_packing(spec, &from) continues `from` (the same
+/// spec at fewer or as many sweeps, or its placement: the same spec without
+/// equilibration, sweep 0; see resume_mismatch) to spec.sweeps. The result is the uninterrupted run's,
 /// bit for bit. `checkpoint`, if given, receives the packing part-way (its
 /// attributes those of the same spec at the sweeps done) at most every
 /// spec.checkpoint_seconds of a long equilibration.
@@ -89,8 +90,9 @@ Packing generate_packing(const PackingSpec& spec, const Packing* from = nullptr,
                          const PackingCheckpoint& checkpoint = {});
 
 /// Why generate_packing(spec, &from) cannot resume from `from` ("" when it
-/// can): not an equilibration of the same packing, one without the recorded
-/// state, one further than spec.sweeps, or one failing packing_mismatch.
+/// can): neither an equilibration of the same packing nor its placement, one
+/// without the recorded state, one further than spec.sweeps, or one failing
+/// packing_mismatch.
 std::string resume_mismatch(const Packing& from, const PackingSpec& spec);
 
 /// Monte Carlo sweeps a packing records (0 when not equilibrated).
