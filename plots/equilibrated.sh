@@ -7,12 +7,14 @@
 # measured and its error against the excluded-volume model, and level 1's
 # own-level checks (measured, excluded-volume model), where the omega = 10,
 # nu = 0.6 miss sits (docs/MODEL.md section 8, limits). Writes
-# results/equilibrated[-SCALE].csv and prints it as a Markdown table.
+# results/equilibrated[-SCALE].csv and prints it as a Markdown table; the
+# compressed scale also draws paper_figs/equilibrium-routes.png|pdf.
 # Usage: plots/equilibrated.sh [SCALE]   (default: 6 packings x 3 states, N = 10^5, ~4 min; long: up to 10^4
 #        sweeps at N = 3·10^4-10^5 (periodic; walls: the walls scale), ~30 min on 2 cores; walls: walled against periodic, N = 3000,
 #        nu = 0.4-0.6, up to 10^5 sweeps, several seeds, ~50 min; walls-long: nu = 0.6 walled and periodic
 #        up to 10^6 sweeps, each stage resumed from the one before, ~45 min; compressed: packings by compression
-#        (sequential addition at nu = 0.35, growth + FIRE) before and after Monte Carlo, against sequential addition, ~45 min; smoke: 2 x 2 at 10^4)
+#        (sequential addition at nu = 0.35, growth + FIRE) before and after Monte Carlo, against sequential addition, ~1 h
+#        (~1.5 h with the walled 10^6-sweep stage, that of walls-long); smoke: 2 x 2 at 10^4)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scale=${1:-default}
@@ -52,9 +54,14 @@ points_compressed="
 -3 100 0.6 30000 periodic 0,1000,3000,10000 1 growth
 -3 100 0.6 30000 periodic 0,1000,3000,10000 1 auto
 -3 10 0.6 3000 walls 0,10000,100000 1,2 growth
+-3 10 0.6 3000 walls 0,10000,100000,1000000 1 auto
+-3 10 0.6 3000 walls 0,10000,100000 2 auto
 -3 10 0.6 3000 periodic 0,10000,100000 1,2 growth
+-3 10 0.6 3000 periodic 0,10000,100000 1,2 auto
 -3 10 0.6 30000 periodic 0,10000 1 growth
+-3 10 0.6 30000 periodic 0,10000 1 auto
 -2 10 0.6 30000 periodic 0,10000 1 growth
+-2 10 0.6 30000 periodic 0,10000 1 auto
 -3 10 0.6 10000 walls 0,10000,100000 1 growth
 -3 10 0.6 10000 walls 0,10000,100000 1 auto"
 points_smoke="
@@ -101,6 +108,15 @@ trap 'rm -f "$tmp"' EXIT
   done <<< "$points"
 } > "$tmp"
 mv "$tmp" "$csv"
+if [ "$scale" = compressed ] && command -v gnuplot >/dev/null 2>&1; then
+  for fmt in png pdf; do  # both routes against the sweeps: paper_figs/equilibrium-routes.png|pdf
+    t="paper_figs/.equilibrium-routes.tmp.$fmt"
+    gnuplot -e "in='$csv'; out='$t'; fmt='$fmt'" plots/equilibrium_routes.gp
+    if [ "$fmt" = pdf ]; then plots/lib/pdf_fixdate.sh "$t"; fi
+    mv -f "$t" "paper_figs/equilibrium-routes.$fmt"
+  done
+  echo "wrote paper_figs/equilibrium-routes.png|pdf" >&2
+fi
 echo "| boundary | alpha | omega | nu | N | seed | placement | MC sweeps | swap acceptance | measured T/N | excluded-volume model | level 1 own checks, measured / model |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 grep -v '^#' "$csv" | tail -n +2 | awk -F, '{printf "| %s | %s | %s | %s | %s | %s | %s | %s | %.2f | %.3f | %+.2f %% | %.3f |\n", $1, $2, $3, $4, $5, ($15 == "" ? 1 : $15), ($16 == "" ? "auto" : $16), $6, $7, $8, 100 * $12, $13 / $14}'
