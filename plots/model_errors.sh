@@ -3,7 +3,8 @@
 # and 12: measured T/N, and measured / predicted - 1 for the paper's model
 # (random centres) and the excluded-volume model. Reads results/fig11[-S].csv,
 # fig12[-S].csv and, if there, fig11_equilibrated[-S].csv,
-# fig12_equilibrated[-S].csv, fig12_growth[-S].csv and
+# fig12_equilibrated[-S].csv, fig12_growth[-S].csv and the compressed,
+# then equilibrated fig11_growth_equilibrated[-S].csv and
 # fig12_growth_equilibrated[-S].csv; writes
 # paper_figs/model-errors[-S].md.
 # Usage: plots/model_errors.sh [SCALE]
@@ -42,6 +43,10 @@ table() {  # CSV TITLE: one row per excluded-volume point
     else what="nu = 0.6, N = 10^5, packings equilibrated (10^4 sweeps"; fi
     table "results/fig11_equilibrated$suffix.csv" \
       "Figure 11, $what of Monte Carlo with swaps; \`hgrid run experiments/fig11_equilibrated.toml --scale $scale\`, not part of make figures)"
+  fi
+  if [ -f "results/fig11_growth_equilibrated$suffix.csv" ]; then
+    table "results/fig11_growth_equilibrated$suffix.csv" \
+      "Figure 11, nu = 0.6, N = 10^5, packings by compression, then equilibrated (10^4 sweeps of Monte Carlo with swaps; \`hgrid run experiments/fig11_growth_equilibrated.toml --jobs 2\`, not part of make figures)"
   fi
   table "results/fig12$suffix.csv" "Figure 12 (T/N against N)"
   if [ -f "results/fig12_equilibrated$suffix.csv" ]; then
