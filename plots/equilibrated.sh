@@ -14,7 +14,7 @@
 #        nu = 0.4-0.6, up to 10^5 sweeps, several seeds, ~50 min; walls-long: nu = 0.6 walled and periodic
 #        up to 10^6 sweeps, each stage resumed from the one before, ~45 min; compressed: packings by compression
 #        (sequential addition at nu = 0.35, growth + FIRE) before and after Monte Carlo, against sequential addition, ~1 h
-#        (~1.5 h with the walled 10^6-sweep stage, that of walls-long); smoke: 2 x 2 at 10^4)
+#        (~2.5 h with the walled 10^6-sweep stages); smoke: 2 x 2 at 10^4)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scale=${1:-default}
@@ -53,9 +53,8 @@ points_walls_long="
 points_compressed="
 -3 100 0.6 30000 periodic 0,1000,3000,10000 1 growth
 -3 100 0.6 30000 periodic 0,1000,3000,10000 1 auto
--3 10 0.6 3000 walls 0,10000,100000 1,2 growth
--3 10 0.6 3000 walls 0,10000,100000,1000000 1 auto
--3 10 0.6 3000 walls 0,10000,100000 2 auto
+-3 10 0.6 3000 walls 0,10000,100000,1000000 1,2 growth
+-3 10 0.6 3000 walls 0,10000,100000,1000000 1,2 auto
 -3 10 0.6 3000 periodic 0,10000,100000 1,2 growth
 -3 10 0.6 3000 periodic 0,10000,100000 1,2 auto
 -3 10 0.6 30000 periodic 0,10000 1 growth
