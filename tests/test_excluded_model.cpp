@@ -280,6 +280,47 @@ TEST(ExcludedModel, WalledBoxesConvergeInTheWaveNumbers) {
   EXPECT_NEAR(b.T_over_N / a.T_over_N, 1.0, kDiscretisationRelTol);
 }
 
+TEST(ExcludedModel, WallLayerScansCountOnlyTheInterior) {
+  // One cell spanning the box (s > A): every scan holds every centre, so the
+  // share seen from outside the layer is the share of the scanning class's
+  // positions in [layer, A - layer] out of its accessible [r, A - r].
+  const double A = 100.0, r = 1.0, layer = 10.0;
+  const detail::WallProfile a{r, 1.0, {}}, b{2.0, 1.0, {}};
+  const detail::AxisScan ax = detail::scan_axis(A, a, 2.0 * A, false, 5.0, {b}, layer);
+  EXPECT_NEAR(ax.fraction[0], 1.0, 1e-12);
+  EXPECT_NEAR(ax.fraction_interior[0], (A - 2.0 * layer) / (A - 2.0 * r), 1e-3);
+  EXPECT_NEAR(detail::scan_axis(A, a, 2.0 * A, false, 5.0, {b}).fraction_interior[0], 1.0, 1e-12);
+}
+
+TEST(ExcludedModel, DepletedWallLayerCarriesNoPairExcess) {
+  // The Fig. 12 alpha = -3, N = 3000 box: sparing the wall layers the bulk
+  // excess lowers the pair count, leaves the cell accesses, and matters less
+  // in a larger box (the layers' share falls like 1/A).
+  const PowerLaw d(-3, 10);
+  const std::vector<double> s = {3.71, 6.29, 9.67, 14.14, 20.0};
+  const ModelParams p{3, 0.6, 0.2, Search::top_down};
+  ExcludedOptions product;
+  product.wall_pairs = WallPairs::product;
+  const auto gap = [&](double A) {
+    const WallBox box{{A, A, A}};
+    const ModelResult layer = evaluate_excluded_model(d, p, s, {}, box);
+    const ModelResult prod = evaluate_excluded_model(d, p, s, product, box);
+    EXPECT_LT(layer.T_cd_over_N, prod.T_cd_over_N) << A;
+    EXPECT_EQ(layer.T_ca_over_N, prod.T_ca_over_N) << A;
+    return prod.T_over_N / layer.T_over_N - 1.0;
+  };
+  const double small = gap(72.5), large = gap(725.0);
+  EXPECT_GT(small, 0.02);  // ~4 % at N = 3000 (docs/MODEL.md section 8)
+  EXPECT_LT(large, small / 5);
+  // One radius: no larger class leaves a layer, the two agree.
+  const PowerLaw mono(-3, 1.0);
+  const std::vector<double> s1 = {4.0};
+  const ModelParams p1{3, 0.4, 0.2, Search::top_down};
+  const WallBox box{{40.0, 40.0, 40.0}};
+  EXPECT_EQ(evaluate_excluded_model(mono, p1, s1, {}, box).T_over_N,
+            evaluate_excluded_model(mono, p1, s1, product, box).T_over_N);
+}
+
 TEST(ExcludedModel, WalledSquaresApproachTheBulk) {
   // 2D: the wall layer's share of the square falls like 1/A.
   const PowerLaw d(-3, 5);

@@ -32,12 +32,17 @@ struct Window {
 };
 
 // Walls: each window's random-centre count and cell accesses in the walled
-// box (centres uniform in their accessible region, scans clipped), and the
-// bulk excess scaled by the ratio of walled to bulk random counts.
-void apply_walls(int d, const WallBox& box, double density, const std::vector<Bin>& bins,
+// box (centres in their accessible region with the wall profiles, scans
+// clipped), and the bulk excess scaled by the ratio of walled to bulk random
+// counts, counting only scanning centres outside the layer `wall_pairs` spares.
+void apply_walls(int d, const WallBox& box, WallPairs wall_pairs, double density, const std::vector<Bin>& bins,
                  const std::vector<detail::WallProfile>& prof, const std::vector<Window>& win,
                  const std::vector<double>& excess, const std::vector<double>& sizes, ModelResult& res) {
   const int L = static_cast<int>(sizes.size());
+  // Scanning centres closer to a wall than this carry no pair excess.
+  double layer = 0.0;
+  if (wall_pairs == WallPairs::depleted_layer)
+    for (const Bin& b : bins) layer = std::max(layer, b.r_mean);
   double volume = 1.0;
   for (int k = 0; k < d; ++k) volume *= box.extent[k];
   std::fill(res.T_cd_pair.begin(), res.T_cd_pair.end(), 0.0);
@@ -57,16 +62,19 @@ void apply_walls(int d, const WallBox& box, double density, const std::vector<Bi
       while (same < k && box.extent[same] != box.extent[k]) ++same;
       ax[k] = same < k ? ax[same]
                        : detail::scan_axis(box.extent[k], prof[wi.bin], sizes[wi.level_searched], own,
-                                           a.r_mean + 0.5 * sizes[wi.level_searched], searched);
+                                           a.r_mean + 0.5 * sizes[wi.level_searched], searched, layer);
     }
-    double random = 0.0;  // expected level-j centres in the scan, per particle
+    // Expected level-j centres in the scan per particle: all, and those seen
+    // from a scanning centre outside the wall layers (the ones with excess).
+    double random = 0.0, random_interior = 0.0;
     for (std::size_t q = 0; q < searched.size(); ++q) {
-      double f = density * volume * prob[q];
-      for (int k = 0; k < d; ++k) f *= ax[k].fraction[q];
+      double f = density * volume * prob[q], g = f;
+      for (int k = 0; k < d; ++k) f *= ax[k].fraction[q], g *= ax[k].fraction_interior[q];
       random += f;
+      random_interior += g;
     }
     const double bulk = density * P_j * std::pow(2.0 * wi.c + wi.s, d);
-    const double scaled_excess = bulk > 0 ? excess[w] * random / bulk : 0.0;
+    const double scaled_excess = bulk > 0 ? excess[w] * random_interior / bulk : 0.0;
     res.T_cd_pair[a.level * L + wi.level_searched] += wi.half * a.P * (random + scaled_excess);
     double cells = 1.0;
     if (own) {  // own cell + the existing cells of the half stencil (first non-zero offset positive)
@@ -345,7 +353,7 @@ ModelResult evaluate_excluded_model(const Distribution& dist, const ModelParams&
     std::vector<detail::WallProfile> prof;
     const std::vector<double> excess = disc_excess(bins, rho, sigma, win, p.nu, opt, walls ? &prof : nullptr);
     if (walls) {
-      apply_walls(2, *walls, c, bins, prof, win, excess, sizes, res);
+      apply_walls(2, *walls, opt.wall_pairs, c, bins, prof, win, excess, sizes, res);
     } else {
       for (std::size_t w = 0; w < win.size(); ++w)
         res.T_cd_pair[bins[win[w].bin].level * L + win[w].level_searched] += win[w].half * bins[win[w].bin].P * excess[w];
@@ -393,7 +401,7 @@ ModelResult evaluate_excluded_model(const Distribution& dist, const ModelParams&
     for (std::size_t w = 0; w < win.size(); ++w)
       res.T_cd_pair[bins[win[w].bin].level * L + win[w].level_searched] += win[w].half * bins[win[w].bin].P * excess[w];
   } else {
-    apply_walls(3, *walls, c, bins, wall_profiles(rho, sigma, bins, opt), win, excess, sizes, res);
+    apply_walls(3, *walls, opt.wall_pairs, c, bins, wall_profiles(rho, sigma, bins, opt), win, excess, sizes, res);
   }
   return finish(res, p, L);
 }

@@ -12,6 +12,19 @@
 
 namespace hgrid {
 
+/// Walls: which pairs near a wall carry the bulk pair excess (docs/MODEL.md
+/// section 8, "Walls").
+enum class WallPairs {
+  /// None whose scanning centre lies closer to a wall than the largest size
+  /// class's mean radius (the layer the largest centres cannot enter, where
+  /// the wall's contact layer, already in the one-body profiles, is the
+  /// crowding); the rest the bulk excess per random pair.
+  depleted_layer,
+  /// Every pair the bulk excess per random pair (Kirkwood's superposition of
+  /// the wall-particle and particle-particle correlations).
+  product,
+};
+
 /// Discretisation of the excluded-volume model. The defaults change T/N by
 /// < 1e-3 relative when any of them is doubled, or halved for a step
 /// (tests/test_excluded_model).
@@ -26,6 +39,7 @@ struct ExcludedOptions {
   /// fraction of the density being solved and the iterations so far (at
   /// most kMaxDiscIterations; seconds per iteration grow like omega^2).
   std::function<void(double, int)> on_iteration;
+  WallPairs wall_pairs = WallPairs::depleted_layer;  // walls only; not a discretisation
 };
 
 /// A box with walls [0, A_1] x [0, A_2] x [0, A_3]: centres of radius r lie
@@ -48,7 +62,8 @@ inline constexpr int kMaxWaveNumbers = 1 << 17;
 /// against h_ij(r) = g_ij(r) - 1 (Percus-Yevick); cell accesses are unchanged.
 /// With walls, each pair's random-centre count and cell accesses are those of
 /// the walled box (exact for uniform centres in the accessible region) and the
-/// Percus-Yevick excess is the bulk one scaled by the same ratio.
+/// Percus-Yevick excess is the bulk one scaled by the same ratio, counting only
+/// the scanning centres that opt.wall_pairs charges with it.
 /// In 2D (discs: no closed-form Percus-Yevick solution) h_ij comes from the
 /// numerical solution (detail::PyNumeric), walls included.
 /// Throws InputError for nu >= 1, past the supported omega, and (2D) where the

@@ -25,9 +25,11 @@ double density(const WallProfile& p, double A, double x) {
 }
 }  // namespace
 
-AxisScan scan_axis(double A, const WallProfile& a, double s, bool own, double beta, const std::vector<WallProfile>& b) {
+AxisScan scan_axis(double A, const WallProfile& a, double s, bool own, double beta, const std::vector<WallProfile>& b,
+                   double layer) {
   AxisScan out;
   out.fraction.assign(b.size(), 0.0);
+  out.fraction_interior.assign(b.size(), 0.0);
   const long n = std::max(1L, static_cast<long>(std::ceil(A / s)));
   const long M = std::max<long>(kMinSamples, kSamplesPerCell * n);
   const double dx = A / M;
@@ -59,13 +61,19 @@ AxisScan scan_axis(double A, const WallProfile& a, double s, bool own, double be
       c0 = cell(x - beta), c1 = cell(x + beta);
     }
     out.cells += w * static_cast<double>(c1 - c0 + 1);
-    for (std::size_t q = 0; q < b.size(); ++q) out.fraction[q] += w * (cdf(q, (c1 + 1) * s) - cdf(q, c0 * s));
+    const bool interior = x >= layer && x <= A - layer;
+    for (std::size_t q = 0; q < b.size(); ++q) {
+      const double f = w * (cdf(q, (c1 + 1) * s) - cdf(q, c0 * s));
+      out.fraction[q] += f;
+      if (interior) out.fraction_interior[q] += f;
+    }
   }
   if (wsum > 0) {
     out.cells /= wsum;
     out.p_below /= wsum;
     out.p_above /= wsum;
     for (double& f : out.fraction) f /= wsum;
+    for (double& f : out.fraction_interior) f /= wsum;
   }
   return out;
 }

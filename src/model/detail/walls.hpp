@@ -19,11 +19,14 @@ struct AxisScan {
   double cells = 0;                // expected number of cells scanned
   double p_below = 0, p_above = 0; // own-level: probability the cell below / above exists
   std::vector<double> fraction;    // per searched class: expected share of its particles inside the scan
+  std::vector<double> fraction_interior;  // the same, counting only scanning positions at least `layer` from both walls
 };
 
 /// A particle of the class `a` on a level of cells of side s (n = ceil(A / s),
 /// cell 0 at the wall). own: the cells i-1..i+1 around its cell i; otherwise
 /// every cell from (x - beta) to (x + beta). Scans are clipped to [0, n-1].
-AxisScan scan_axis(double A, const WallProfile& a, double s, bool own, double beta, const std::vector<WallProfile>& b);
+/// fraction_interior counts only scanning positions x in [layer, A - layer].
+AxisScan scan_axis(double A, const WallProfile& a, double s, bool own, double beta, const std::vector<WallProfile>& b,
+                   double layer = 0);
 
 }  // namespace hgrid::detail
