@@ -185,6 +185,26 @@ TEST_F(Cli, CountJson) {
   EXPECT_EQ(j["per_level"][0]["particles"], 4);
 }
 
+TEST_F(Cli, CountReportsTheWallPairsModelAsked) {
+  // A walled excluded-volume packing: the same counts, two wall closures of
+  // the excluded-volume model; the product charges the wall layers the bulk
+  // pair excess, so it predicts more checks (docs/MODEL.md section 8).
+  const Result g = hgrid_run("generate --n 400 --nu 0.5 --alpha -3 --omega 5 --boundary walls --placement excluded "
+                             "--seed 3 --out " + path("w.h5"));
+  ASSERT_EQ(g.status, 0) << g.err;
+  const auto count = [&](const std::string& extra) {
+    const Result r = hgrid_run("count " + path("w.h5") + " --cells optimal --threads 1 --json" + extra);
+    EXPECT_EQ(r.status, 0) << r.err;
+    return nlohmann::json::parse(r.out);
+  };
+  const auto layer = count(""), product = count(" --wall-pairs product");
+  EXPECT_EQ(layer["wall_pairs"], "layer");
+  EXPECT_EQ(product["wall_pairs"], "product");
+  EXPECT_EQ(layer["narrow_phase_checks"], product["narrow_phase_checks"]);
+  EXPECT_LT(layer["model_excluded_T_cd_over_N"].get<double>(), product["model_excluded_T_cd_over_N"].get<double>());
+  EXPECT_EQ(count(" --wall-pairs layer")["model_excluded_T_over_N"], layer["model_excluded_T_over_N"]);
+}
+
 TEST_F(Cli, BadInputExitsWithStatus2) {
   std::ofstream(path("p.csv")) << "# box 4 4\n# boundary walls\nx,y,r\n0.5,0.5,0.5\n";
   std::ofstream(path("neg.csv")) << "# box 4 4\n# boundary walls\nx,y,r\n0.5,0.5,-0.5\n";
@@ -193,6 +213,7 @@ TEST_F(Cli, BadInputExitsWithStatus2) {
       {"count " + path("p.csv") + " --sizes 0.5", "sizes"},
       {"count " + path("p.csv") + " --sizes 2,abc", "sizes"},
       {"count " + path("p.csv") + " --sizes 2 --search sideways", "search"},
+      {"count " + path("p.csv") + " --sizes 2 --wall-pairs kirkwood", "wall-pairs"},
       {"count " + path("neg.csv") + " --sizes 2", "radius"},
       {"count " + path("nothere.h5") + " --sizes 2", "file"},
       {"count " + path("p.csv"), "sizes"},

@@ -21,6 +21,7 @@
 #include "io/packing_file.hpp"
 #include "io/particle_file.hpp"
 #include "model/distribution.hpp"
+#include "model/excluded.hpp"
 #include "model/time_model.hpp"
 
 namespace hgrid::cli {
@@ -38,6 +39,7 @@ struct GridOptions {
   SizeRequest request;
   int threads = 0;  // 0: all cores (OMP_NUM_THREADS)
   bool decompose = false;  // over the ranks of an MPI run (cmd_decompose.cpp)
+  std::string wall_pairs = "layer";  // count: the excluded-volume model's pairs near a wall
 };
 
 void add_grid_options(CLI::App* sub, GridOptions& o) {
@@ -115,7 +117,7 @@ void run_pairs(const GridOptions& o, bool brute) {
 }
 
 nlohmann::json count_json(const Packing& p, const GridParams& g, const std::vector<double>& used, const Counters& c,
-                          double K, double t_build, double t_query) {
+                          double K, double t_build, double t_query, WallPairs wall_pairs) {
   using nlohmann::json;
   const double n = static_cast<double>(p.size());
   json j;
@@ -136,7 +138,8 @@ nlohmann::json count_json(const Packing& p, const GridParams& g, const std::vect
   j["T_over_N"] = n > 0 ? c.cost(K) / n : 0.0;
   j["T_cd_over_N"] = n > 0 ? static_cast<double>(c.narrow_phase_checks) / n : 0.0;
   j["T_ca_over_N"] = n > 0 ? static_cast<double>(c.cell_accesses) / n : 0.0;
-  const PackingModels models = model_for_packing(p, used, g.search, K, true, true);
+  const PackingModels models = model_for_packing(p, used, g.search, K, true, true, wall_pairs);
+  if (p.boundary == Boundary::walls) j["wall_pairs"] = to_string(wall_pairs);
   j["model_T_over_N"] = models.random.T_over_N;
   j["model_T_cd_over_N"] = models.random.T_cd_over_N;
   j["model_T_ca_over_N"] = models.random.T_ca_over_N;
@@ -257,6 +260,7 @@ nlohmann::json balance_json(const Packing& p, const GridParams& g, const std::st
 void run_count(const GridOptions& o, const std::string& K_text, int repeat, bool as_json,
                const std::string& balance) {
   const double K = resolve_K(K_text, "K");
+  const WallPairs wall_pairs = parse_wall_pairs(o.wall_pairs);
   if (repeat < 0) throw InputError("repeat", "must be >= 0");
   if (o.decompose) {
     if (repeat > 0 || !balance.empty()) throw InputError(repeat > 0 ? "repeat" : "balance", "not with --decompose");
@@ -274,7 +278,7 @@ void run_count(const GridOptions& o, const std::string& K_text, int repeat, bool
     t0 = Clock::now();
     const Counters c = grid.template for_each_pair<Counted>([](std::uint32_t, std::uint32_t) {});
     const double t_query = seconds_since(t0);
-    nlohmann::json out = count_json(p, g, grid.sizes(), c, K, t_build, t_query);
+    nlohmann::json out = count_json(p, g, grid.sizes(), c, K, t_build, t_query, wall_pairs);
     add_predicted_seconds(out, p, grid.sizes(), g.search, K, counted_time_terms(c, build_work(grid)));
     return out;
   });
@@ -332,6 +336,10 @@ void register_grid_commands(CLI::App& app) {
     sub->add_option("--balance", *balance,
                     "P1,P2,...: simulate the query's load balance on P threads from the counted work of each piece "
                     "of its decomposition (JSON balance: imbalance = simulated time / (work / P) - 1)");
+    sub->add_option("--wall-pairs", o->wall_pairs,
+                    "walls, excluded-volume model: layer (no pair excess for centres within the largest radius of a "
+                    "wall; docs/MODEL.md section 8) or product (Kirkwood's superposition everywhere)")
+        ->default_val("layer");
     sub->add_flag("--json", *js, "print one JSON object");
     sub->callback([o, K, repeat, js, balance] { run_count(*o, *K, *repeat, *js, *balance); });
   }

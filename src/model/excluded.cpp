@@ -294,6 +294,12 @@ ModelResult finish(ModelResult& res, const ModelParams& p, int L) {
 }
 }  // namespace
 
+WallPairs parse_wall_pairs(const std::string& s, const std::string& field) {
+  if (s == "layer") return WallPairs::depleted_layer;
+  if (s == "product") return WallPairs::product;
+  throw InputError(field, "must be layer or product (got '" + s + "')");
+}
+
 ModelResult evaluate_excluded_model(const Distribution& dist, const ModelParams& p,
                                     const std::vector<double>& sizes, const ExcludedOptions& opt,
                                     const std::optional<WallBox>& walls) {

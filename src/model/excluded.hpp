@@ -5,6 +5,7 @@
 #include <array>
 #include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "model/distribution.hpp"
@@ -24,6 +25,9 @@ enum class WallPairs {
   /// the wall-particle and particle-particle correlations).
   product,
 };
+inline const char* to_string(WallPairs w) { return w == WallPairs::depleted_layer ? "layer" : "product"; }
+/// "layer" | "product"; anything else throws InputError naming `field`.
+WallPairs parse_wall_pairs(const std::string& s, const std::string& field = "wall-pairs");
 
 /// Discretisation of the excluded-volume model. The defaults change T/N by
 /// < 1e-3 relative when any of them is doubled, or halved for a step

@@ -8,7 +8,7 @@
 namespace hgrid {
 
 PackingModels model_for_packing(const Packing& p, const std::vector<double>& sizes, Search search, double K,
-                                bool with_excluded, bool progress) {
+                                bool with_excluded, bool progress, WallPairs wall_pairs) {
   if (p.size() == 0) throw InputError("packing", "no particles to model");
   const Empirical dist(p.radii);
   const ModelParams mp{p.d, p.packing_fraction(), K, search};
@@ -22,7 +22,7 @@ PackingModels model_for_packing(const Packing& p, const std::vector<double>& siz
     try {
       std::optional<WallBox> walls;
       if (p.boundary == Boundary::walls) walls = WallBox{{p.box[0], p.box[1], p.box[2]}};
-      out.excluded = evaluate_excluded_model_reported(dist, mp, sizes, walls, progress);
+      out.excluded = evaluate_excluded_model_reported(dist, mp, sizes, walls, progress, wall_pairs);
     } catch (const InputError& e) {
       out.excluded_skipped = e.what();
     }
@@ -32,10 +32,11 @@ PackingModels model_for_packing(const Packing& p, const std::vector<double>& siz
 
 ModelResult evaluate_excluded_model_reported(const Distribution& dist, const ModelParams& p,
                                              const std::vector<double>& sizes, const std::optional<WallBox>& walls,
-                                             bool progress) {
+                                             bool progress, WallPairs wall_pairs) {
   Progress bar(progress && p.d == 2,
                "excluded-volume model (2D Percus-Yevick, ETA for at most " + std::to_string(kMaxDiscIterations) + " iterations)");
   ExcludedOptions opt;
+  opt.wall_pairs = wall_pairs;
   opt.on_iteration = [&](double t, int it) {
     bar.update(static_cast<double>(it) / kMaxDiscIterations,
                "density " + std::to_string(static_cast<int>(100 * t)) + " %, " + std::to_string(it) + " iterations");
