@@ -58,8 +58,9 @@ table() {  # CSV TITLE: one row per excluded-volume point
       "Figure 12, packings by compression (sequential addition at nu = 0.35, then growth + FIRE; \`hgrid run experiments/fig12_growth.toml --scale $scale\`, not part of make figures)"
   fi
   if [ -f "results/fig12_growth_equilibrated$suffix.csv" ]; then
+    if [ "$scale" = paper ]; then what="N = 10^5"; else what="N <= 3·10^4"; fi
     table "results/fig12_growth_equilibrated$suffix.csv" \
-      "Figure 12, N <= 3·10^4, packings by compression, then equilibrated (10^4 sweeps of Monte Carlo with swaps; \`hgrid run experiments/fig12_growth_equilibrated.toml --jobs 2\`, not part of make figures)"
+      "Figure 12, $what, packings by compression, then equilibrated (10^4 sweeps of Monte Carlo with swaps; \`hgrid run experiments/fig12_growth_equilibrated.toml --jobs 2 --scale $scale\`, not part of make figures)"
   fi
 } > "$tmp"
 mv -f "$tmp" "$out"
