@@ -22,6 +22,7 @@ constexpr double kLowDensityRelTol = 1e-9;   // issue target: nu -> 0 equals the
 constexpr double kDiscretisationRelTol = 1e-3;
 constexpr double kIndependentAbsTol = 2e-3;  // vs the numpy/LAPACK evaluation, per particle
 constexpr double kWallBulkRelTol = 2e-3;     // per 1000 units of box length, walled vs bulk
+constexpr double kIndependentWallRelTol = 3e-4;  // walled T/N vs the numpy evaluation (each ~1e-4)
 constexpr double kPyNumericRelTol = 2e-3;    // numerical PY (r step 1/80 diameter) vs closed-form contact values
 constexpr double kVirialAbsTol = 3e-4;       // 2D contact value at eta = 0.01 vs its first order in density
 
@@ -319,6 +320,29 @@ TEST(ExcludedModel, DepletedWallLayerCarriesNoPairExcess) {
   const WallBox box{{40.0, 40.0, 40.0}};
   EXPECT_EQ(evaluate_excluded_model(mono, p1, s1, {}, box).T_over_N,
             evaluate_excluded_model(mono, p1, s1, product, box).T_over_N);
+}
+
+TEST(ExcludedModel, WallsMatchAnIndependentEvaluation) {
+  // T/N in small walled cubes, the depleted wall layer and Kirkwood's product,
+  // from a separate numpy evaluation (wall profiles by a direct sine sum on a
+  // k grid twice as long, trapezoid-rule axis scans, k-space window
+  // transforms): python3 tests/independent/walled_pins.py reproduces these.
+  struct Case { double alpha, omega, nu; std::vector<double> sizes; double A, layer, product; };
+  const std::vector<Case> cases = {{-3, 10, 0.4, {4, 8, 20}, 60.0, 13.120931, 13.480050},
+                                   {-3, 10, 0.6, {3.71, 6.29, 9.67, 14.14, 20}, 72.5, 16.114029, 16.736928},
+                                   {0, 10, 0.5, {5, 12, 20}, 80.0, 30.226097, 30.212257}};
+  ExcludedOptions product;
+  product.wall_pairs = WallPairs::product;
+  for (const Case& c : cases) {
+    const PowerLaw d(c.alpha, c.omega);
+    const ModelParams p{3, c.nu, 0.2, Search::top_down};
+    const WallBox box{{c.A, c.A, c.A}};
+    EXPECT_NEAR(evaluate_excluded_model(d, p, c.sizes, {}, box).T_over_N / c.layer, 1.0, kIndependentWallRelTol)
+        << "layer, alpha " << c.alpha << " nu " << c.nu;
+    EXPECT_NEAR(evaluate_excluded_model(d, p, c.sizes, product, box).T_over_N / c.product, 1.0,
+                kIndependentWallRelTol)
+        << "product, alpha " << c.alpha << " nu " << c.nu;
+  }
 }
 
 TEST(ExcludedModel, WalledSquaresApproachTheBulk) {

@@ -170,6 +170,7 @@ std::vector<detail::WallProfile> wall_profiles(const std::vector<double>& rho, c
     detail::sine_transform(F);
     prof[b].radius = bins[b].r_mean;
     prof[b].dz = dr;
+    prof[b].contact = 0.5 * sigma[b];
     const auto nz = static_cast<std::size_t>(kWallReach * smax / dr);
     prof[b].h.resize(nz);
     for (std::size_t i = 0; i < nz; ++i) {

@@ -6,16 +6,18 @@
 namespace hgrid::detail {
 
 namespace {
-constexpr int kSamplesPerCell = 64;  // midpoint rule in x
-constexpr int kMinSamples = 4096;
+constexpr int kSamplesPerCell = 256;  // midpoint rule in x (the densities jump at contact: ~1e-4 of T/N)
+constexpr int kMinSamples = 16384;
 
 double wall_h(const WallProfile& p, double z) {
   if (z < p.radius) return -1.0;
   if (p.h.empty()) return 0.0;
+  if (z < p.contact) return -1.0;
   const double t = z / p.dz;
-  const auto i = static_cast<std::size_t>(t);
+  auto i = static_cast<std::size_t>(t);
+  if (static_cast<double>(i) * p.dz < p.contact) ++i;  // the node below is inside contact: extrapolate from above
   if (i + 1 >= p.h.size()) return 0.0;
-  return p.h[i] + (t - i) * (p.h[i + 1] - p.h[i]);
+  return p.h[i] + (t - static_cast<double>(i)) * (p.h[i + 1] - p.h[i]);
 }
 
 // Density at x, 0 outside the class's accessible region [r, A - r].

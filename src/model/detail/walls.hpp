@@ -13,6 +13,9 @@ struct WallProfile {
   double radius = 0;
   double dz = 1;
   std::vector<double> h;
+  /// Where h jumps from -1 to its contact value (0: no jump inside the table);
+  /// h is interpolated from nodes on one side of it only.
+  double contact = 0;
 };
 
 struct AxisScan {
