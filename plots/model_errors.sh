@@ -4,8 +4,8 @@
 # (random centres) and the excluded-volume model. Reads results/fig11[-S].csv,
 # fig12[-S].csv and, if there, fig11_equilibrated[-S].csv,
 # fig12_equilibrated[-S].csv, fig12_growth[-S].csv and the compressed,
-# then equilibrated fig11_growth_equilibrated[-S].csv and
-# fig12_growth_equilibrated[-S].csv; writes
+# then equilibrated fig11_growth_equilibrated[-S].csv,
+# fig12_growth_equilibrated[-S].csv and fig12_large_equilibrated[-S].csv; writes
 # paper_figs/model-errors[-S].md.
 # Usage: plots/model_errors.sh [SCALE]
 set -euo pipefail
@@ -61,6 +61,11 @@ table() {  # CSV TITLE: one row per excluded-volume point
     if [ "$scale" = paper ]; then what="N = 10^5"; else what="N <= 3·10^4"; fi
     table "results/fig12_growth_equilibrated$suffix.csv" \
       "Figure 12, $what, packings by compression, then equilibrated (10^4 sweeps of Monte Carlo with swaps; \`hgrid run experiments/fig12_growth_equilibrated.toml --jobs 2 --scale $scale\`, not part of make figures)"
+  fi
+  if [ -f "results/fig12_large_equilibrated$suffix.csv" ]; then
+    if [ "$scale" = paper ]; then what="N = 10^6, 3000 sweeps"; else what="N = 3·10^5, 10^4 sweeps"; fi
+    table "results/fig12_large_equilibrated$suffix.csv" \
+      "Figure 12, alpha = -3, $what of Monte Carlo with swaps after compression (\`hgrid run experiments/fig12_large_equilibrated.toml --scale $scale\`, not part of make figures)"
   fi
 } > "$tmp"
 mv -f "$tmp" "$out"
