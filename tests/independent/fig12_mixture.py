@@ -3,6 +3,7 @@ and the wall as a Percus-Yevick component, for wall_product.py,
 wall_mediators.py and wall_contact.py (docs/MODEL.md section 8, walls)."""
 import numpy as np
 from excluded_pins import hhat
+import walled_pins as W  # the wall's contact step and contact values, shared
 
 alpha, omega, nu = -3.0, 10.0, 0.6
 s1 = 3.6467469369631162                 # level-1 cell size at N = 3e4
@@ -19,10 +20,10 @@ P = np.array([moment(0, edges[i], edges[i + 1]) for i in range(B)])
 sig = 2 * (np.array([moment(3, edges[i], edges[i + 1]) for i in range(B)]) / P) ** (1 / 3)
 P /= P.sum()
 rho = nu / (np.pi / 6 * np.sum(P * sig ** 3)) * P
-sw = 20 * sig.max()                     # the wall: a sphere 20 largest diameters wide, negligible density
-rho_w = np.append(rho, 1e-12 * 6 / (np.pi * sw ** 3))
+sw = W.WALL_DIAMETER * sig.max()         # the wall: a sphere 20 largest diameters wide, negligible density
+rho_w = np.append(rho, W.WALL_PACKING * 6 / (np.pi * sw ** 3))
 sig_w = np.append(sig, sw)
-dk = 0.25 * np.pi / (sw / 2 + 4 * sig.max())
+dk = 0.25 * np.pi / (sw / 2 + W.WALL_REACH * sig.max())
 k = np.arange(1, int(30 / sig.min() / dk)) * dk
 
 
@@ -41,17 +42,12 @@ def radial(Y, r):
 def contact_step(c, g, r):
     """The step of h_cW at contact, -1 inside and (g - 1) e^{-(r - R)/r_min} outside
     (R = (sig_c + sw)/2, g the PY contact value), at distances r."""
-    R = (sig[c] + sw) / 2
-    return np.where(r < R, -1.0, (g - 1) * np.exp(-(r - R) / (sig.min() / 2)))
+    return W.contact_step((sig[c] + sw) / 2, g, sig.min() / 2, r)
 
 
 def contact_step_hat(c, g, q):
     """Its 3D Fourier transform, in closed form, at wave numbers q."""
-    R, a = (sig[c] + sw) / 2, 2 / sig.min()
-    inside = -(np.sin(q * R) - q * R * np.cos(q * R)) / q ** 2
-    zc = a - 1j * q
-    outside = (np.exp(1j * q * R) * (1 / zc ** 2 + R / zc)).imag
-    return 4 * np.pi / q * (inside + (g - 1) * outside)
+    return W.contact_step_hat((sig[c] + sw) / 2, g, sig.min() / 2, q)
 
 
 def wall_hhat(rho_classes):
@@ -62,10 +58,7 @@ def wall_hhat(rho_classes):
     Y = np.empty((len(k), B))
     for i0 in range(0, len(k), 500):
         Y[i0:i0 + 500] = hhat(k[i0:i0 + 500], rw, sig_w)[:, :B, B]
-    xi2 = np.pi / 6 * np.sum(rho_classes * sig ** 2)
-    xi3 = np.pi / 6 * np.sum(rho_classes * sig ** 3)
-    D = sig * sw / (sig + sw)
-    g = 1 / (1 - xi3) + 3 * xi2 * D / (1 - xi3) ** 2
+    g = W.wall_contact_values(rho_classes, sig, sw)
     for c in range(B):
         Y[:, c] -= contact_step_hat(c, g[c], k)
     return Y, g

@@ -31,6 +31,25 @@ WALL_PACKING = 1e-12
 WALL_REACH = 4.0      # profiles tabulated this many largest diameters from the wall
 
 
+def wall_contact_values(rho, sg, sw):
+    """PY contact values of each class against a wall sphere of diameter sw."""
+    xi2, xi3 = np.pi / 6 * np.sum(rho * sg ** 2), np.pi / 6 * np.sum(rho * sg ** 3)
+    return 1 / (1 - xi3) + 3 * xi2 * (sg * sw / (sg + sw)) / (1 - xi3) ** 2
+
+
+def contact_step(R, g, lam, r):
+    """The step of h_cW at contact R: -1 inside, (g - 1) e^{-(r - R)/lam} outside."""
+    return np.where(r < R, -1.0, (g - 1) * np.exp(-np.maximum(r - R, 0) / lam))
+
+
+def contact_step_hat(R, g, lam, q):
+    """Its 3D Fourier transform, in closed form, at wave numbers q."""
+    inside = -(np.sin(q * R) - q * R * np.cos(q * R)) / q ** 2
+    zc = 1 / lam - 1j * q
+    outside = (np.exp(1j * q * R) * (1 / zc ** 2 + R / zc)).imag
+    return 4 * np.pi / q * (inside + (g - 1) * outside)
+
+
 def wall_profiles(rho, sg):
     """Per class c, a function z -> rho_c(z) / rho_c at centre distance z from one wall."""
     B = len(rho)
@@ -40,15 +59,11 @@ def wall_profiles(rho, sg):
     dk = 0.25 * np.pi / (sw / 2 + WALL_REACH * sg.max())
     k = np.arange(1, int(30 / sg.min() / dk)) * dk
     Y = np.concatenate([hhat(k[i:i + 400], rho_w, sig_w)[:, :B, B] for i in range(0, len(k), 400)])
-    xi2, xi3 = np.pi / 6 * np.sum(rho * sg ** 2), np.pi / 6 * np.sum(rho * sg ** 3)
-    g = 1 / (1 - xi3) + 3 * xi2 * (sg * sw / (sg + sw)) / (1 - xi3) ** 2  # PY contact values at the wall
+    g = wall_contact_values(rho, sg, sw)
     lam = sg.min() / 2
     R = (sg + sw) / 2
-    for c in range(B):  # closed-form transform of -1 inside contact, (g - 1) e^{-(r - R)/lam} outside
-        inside = -(np.sin(k * R[c]) - k * R[c] * np.cos(k * R[c])) / k ** 2
-        zc = 1 / lam - 1j * k
-        outside = (np.exp(1j * k * R[c]) * (1 / zc ** 2 + R[c] / zc)).imag
-        Y[:, c] -= 4 * np.pi / k * (inside + (g[c] - 1) * outside)
+    for c in range(B):  # the step at contact, transformed in closed form
+        Y[:, c] -= contact_step_hat(R[c], g[c], lam, k)
     zt = np.arange(0.0, WALL_REACH * sg.max(), 0.01)
     r = sw / 2 + zt
     S = np.sin(np.outer(r, k)) * (dk / (2 * np.pi ** 2)) / r[:, None]
@@ -56,9 +71,8 @@ def wall_profiles(rho, sg):
 
     def make(c):
         def h(z):
-            inner = z < sg[c] / 2
-            out = np.interp(z, zt, smooth[c], right=0.0) + (g[c] - 1) * np.exp(-np.maximum(z - sg[c] / 2, 0) / lam)
-            return np.where(inner, -1.0, np.where(z > zt[-1], 0.0, out))
+            out = np.interp(z, zt, smooth[c], right=0.0) + contact_step(R[c], g[c], lam, sw / 2 + z)
+            return np.where(z < sg[c] / 2, -1.0, np.where(z > zt[-1], 0.0, out))
         return h
     return [make(c) for c in range(B)]
 
