@@ -87,6 +87,7 @@ TEST(Scene, RejectsBadInput) {
   expect_error_naming(excluded + "equilibrate = true\nsweeps = 2.5\n", "packings.sweeps");
   expect_error_naming(excluded + "method = \"shake\"\n", "packings.method");
   expect_error_naming("name = \"t\"\n[packings]\nn = 10\nnu = 0.1\nmethod = \"growth\"\n", "packings.method");
+  expect_error_naming("name = \"t\"\n[packings]\nn = 10\nnu = 0.1\nequilibrate = true\n", "packings.equilibrate");
 }
 
 TEST(Scene, PlacementMethodReachesTheExcludedPackingsOnly) {
@@ -107,6 +108,15 @@ TEST(Scene, EquilibrationSweepsReachThePackings) {
   const Scene s = load_scene(write_scene("eq", excluded + "sweeps = 300\n"), "default");
   EXPECT_TRUE(s.points.at(0).packing.equilibrate);
   EXPECT_EQ(s.points.at(0).packing.sweeps, 300);
+  // Beside random centres (figure 11's two placements): only the excluded-volume packings are equilibrated.
+  const Scene both = load_scene(write_scene("eq", "name = \"t\"\n[packings]\nn = 10\nnu = 0.1\nplacement = "
+                                                  "[\"excluded\", \"random\"]\nequilibrate = true\nsweeps = 300\n"),
+                                "default");
+  ASSERT_EQ(both.points.size(), 2u);
+  EXPECT_TRUE(both.points[0].packing.equilibrate);
+  EXPECT_EQ(both.points[0].packing.sweeps, 300);
+  EXPECT_FALSE(both.points[1].packing.equilibrate);
+  EXPECT_NO_THROW(check_packing_spec(both.points[1].packing));
 }
 
 TEST(Scene, KindSelectsTheRunner) {

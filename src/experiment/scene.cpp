@@ -90,6 +90,8 @@ void check_lists(const PackingLists& p) {
   bool excluded = false;
   for (const auto& s : p.placement) excluded |= parse_placement(s, "packings.placement") == Placement::excluded;
   if (p.method_given && !excluded) throw InputError("packings.method", "only applies to placement = \"excluded\"");
+  if (p.equilibrate && !excluded)
+    throw InputError("packings.equilibrate", "only applies to placement = \"excluded\"");
 }
 
 void read_grid(const toml::table& t, SceneGrid& g) {
@@ -208,9 +210,11 @@ Scene load_scene_text(const std::string& text, const std::string& scale, const s
                         p.boundary = parse_boundary(bnd);
                         p.placement = parse_placement(plc);
                         p.seed = static_cast<std::uint64_t>(seed);
-                        if (p.placement == Placement::excluded) p.method = lists.method;
-                        p.equilibrate = lists.equilibrate;
-                        p.sweeps = static_cast<int>(lists.sweeps);
+                        if (p.placement == Placement::excluded) {  // random centres are neither grown nor equilibrated
+                          p.method = lists.method;
+                          p.equilibrate = lists.equilibrate;
+                          p.sweeps = static_cast<int>(lists.sweeps);
+                        }
                         pt.search = search;
                         s.points.push_back(pt);
                       }
