@@ -46,6 +46,7 @@ nlohmann::json detail::result_to_json(const PointResult& r) {
           {"seed", s.seed},
           {"equilibrate", s.equilibrate},
           {"sweeps", s.sweeps},
+          {"equilibration_sweeps", s.equilibrate ? s.sweeps : 0},  // the CSV's: 0 when not equilibrated
           {"search", to_string(r.point.search)},
           {"levels", c.levels},
           {"sizes", r.sizes},
@@ -194,14 +195,15 @@ void detail::check_result(const PointResult& r, double K) {
 namespace {
 
 /// Columns of the CSV summary (also the 1-D datasets of the HDF5 file).
-const char* const kNumericColumns[] = {"d", "n", "nu", "nu_achieved", "alpha", "omega", "sigma", "seed", "levels",
+const char* const kNumericColumns[] = {"d", "n", "nu", "nu_achieved", "alpha", "omega", "sigma", "seed",
+                                       "equilibration_sweeps", "levels",
                                        "cell_accesses", "narrow_phase_checks", "contacts", "T_over_N", "T_cd_over_N",
                                        "T_ca_over_N", "model_T_over_N", "model_T_cd_over_N", "model_T_ca_over_N",
                                        "model_excluded_T_over_N", "model_excluded_T_cd_over_N",
                                        "model_excluded_T_ca_over_N",
                                        "share_multi_lowest", "seconds_packing", "seconds_sizes", "seconds_build",
                                        "seconds_query"};
-const char* const kTextColumns[] = {"dist", "boundary", "placement", "search"};
+const char* const kTextColumns[] = {"dist", "boundary", "placement", "method", "search"};
 
 void write_csv(const std::string& path, const Scene& scene, const std::vector<nlohmann::json>& rows) {
   write_stream_atomically(path, [&](std::ostream& out) {
