@@ -2,7 +2,8 @@
 # Load balance of the threaded query beyond this machine, by simulation
 # (`hgrid count --balance`, src/experiment/balance.hpp): for the figure-11
 # packings (3D, periodic, alpha = -3, omega = 2..100, nu = 0.1..0.6, excluded
-# volume and random centres; cached under results/packings/), optimal
+# volume as experiments/fig11.toml makes it and random centres; cached under
+# results/packings/), optimal
 # Top-Down sizes, the counted work of every piece of the query's
 # decomposition for P = 8, 64 and 256 threads, handed out as the dynamic
 # schedule does. Writes results/balance[-SCALE].csv and
@@ -20,6 +21,7 @@ case "$scale" in smoke) n=20000; omegas="10 100"; nus="0.1 0.3 0.5" ;;
                  paper) n=1000000; omegas="2 10 50 100"; nus="0.1 0.2 0.3 0.4 0.5 0.6" ;;
                  *) n=100000; omegas="2 10 50 100"; nus="0.1 0.2 0.3 0.4 0.5 0.6" ;; esac
 suffix=$([ "$scale" = default ] && echo "" || echo "-$scale")
+source plots/lib/fig11_protocol.sh "$scale"
 threads=8,64,256
 mkdir -p results results/packings paper_figs
 csv=results/balance$suffix.csv
@@ -33,7 +35,9 @@ trap 'rm -f "$tmp"' EXIT
   for placement in excluded random; do
     for omega in $omegas; do
       for nu in $nus; do
-        f=$("$hgrid" generate --d 3 --n "$n" --nu "$nu" --alpha -3 --omega "$omega" --placement "$placement" \
+        args=$([ "$placement" = excluded ] && echo "$excluded_args" || true)
+        # shellcheck disable=SC2086  # args: several options
+        f=$("$hgrid" generate --d 3 --n "$n" --nu "$nu" --alpha -3 --omega "$omega" --placement "$placement" $args \
               --seed 1 --cache results/packings --quiet | tail -1)
         "$hgrid" count "$f" --cells optimal --threads 1 --balance "$threads" --json |
           jq -r --arg pl "$placement" --arg w "$omega" --arg nu "$nu" \

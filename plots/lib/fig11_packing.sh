@@ -1,5 +1,6 @@
 # Sourced by the scripts that draw one figure-11 packing (alpha = -3,
-# omega = 100, nu = 0.6, excluded volume, seed 1) at a scale: sets scale,
+# omega = 100, nu = 0.6, excluded volume as experiments/fig11.toml makes it,
+# seed 1) at a scale: sets scale,
 # hgrid, n, suffix and packing (generated into, or taken from, the cache),
 # and defines draw NAME GP CSV [GNUPLOT_VARS]: paper_figs/NAME$suffix.png and
 # .pdf, each under a temporary name first. Scales: default N = 10^5, paper
@@ -9,7 +10,9 @@ hgrid=${HGRID:-build/hgrid}
 case "$scale" in smoke) n=30000 ;; paper) n=1000000 ;; *) n=100000 ;; esac
 suffix=$([ "$scale" = default ] && echo "" || echo "-$scale")
 mkdir -p results paper_figs results/packings
-packing=$("$hgrid" generate --n "$n" --nu 0.6 --omega 100 --alpha -3 --placement excluded --seed 1 \
+source plots/lib/fig11_protocol.sh "$scale"
+# shellcheck disable=SC2086  # excluded_args: several options
+packing=$("$hgrid" generate --n "$n" --nu 0.6 --omega 100 --alpha -3 --placement excluded $excluded_args --seed 1 \
           --cache results/packings --quiet | tail -1)
 
 draw() {
