@@ -46,7 +46,6 @@ nlohmann::json detail::result_to_json(const PointResult& r) {
           {"seed", s.seed},
           {"equilibrate", s.equilibrate},
           {"sweeps", s.sweeps},
-          {"equilibration_sweeps", s.equilibrate ? s.sweeps : 0},  // the CSV's: 0 when not equilibrated
           {"search", to_string(r.point.search)},
           {"levels", c.levels},
           {"sizes", r.sizes},
@@ -248,6 +247,8 @@ void write_results(const std::string& stem, const Scene& scene, const std::vecto
   std::size_t lmax = 0;
   for (const auto& r : results) {
     rows.push_back(detail::result_to_json(r));
+    const PackingSpec& s = r.point.packing;  // a column derived from the spec, not journalled
+    rows.back()["equilibration_sweeps"] = s.equilibrate ? s.sweeps : 0;
     lmax = std::max<std::size_t>(lmax, r.counts.levels);
   }
   const hsize_t P = rows.size(), L = lmax;
