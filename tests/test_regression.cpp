@@ -114,6 +114,11 @@ TEST(Regression, ExcludedVolumeCountsMatchBaseline) {
   expect_excluded_model_recorded("regression_excluded");
 }
 
+// The figures' packing protocol: compression, then Monte Carlo with swaps.
+// Paper-scale runs resume from journals that earlier builds measured, so the
+// generator's output is pinned, bit for bit, through the counts.
+TEST(Regression, EquilibratedCountsMatchBaseline) { expect_baseline("regression_equilibrated"); }
+
 // Random centres in a periodic box are the model's own assumption, so the
 // measured T/N must agree with it up to sampling noise. The noise: with
 // Poisson cell occupancy (mean m), Var(checks) ~ E[checks] (1 + 2 m), so
