@@ -64,6 +64,7 @@ class Checkerboard {
     start_.assign(total + 1, 0);
     fill_.assign(total, 0);
     members_.assign(radii.size(), 0);
+    slot_radii_.assign(radii.size(), 0.0);
     dom_.assign(radii.size(), 0);
     for (std::size_t c = 0; c < total; ++c) {
       std::size_t rest = c;
@@ -89,15 +90,22 @@ class Checkerboard {
     const std::size_t n = radii_.size();
     std::fill(start_.begin(), start_.end(), 0);
     for (std::size_t i = 0; i < n; ++i) {
-      std::array<double, D> x;
-      for (int k = 0; k < D; ++k) x[k] = pos_[i * D + k];
-      grid_.insert(static_cast<std::uint32_t>(i), x, radii_[i]);
-      dom_[i] = grid_.domain_of(x, radii_[i]);
+      dom_[i] = grid_.domain_of(at(i), radii_[i]);
       ++start_[dom_[i] + 1];
     }
     for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
     std::copy(start_.begin(), start_.end() - 1, fill_.begin());
-    for (std::size_t i = 0; i < n; ++i) members_[fill_[dom_[i]]++] = static_cast<std::uint32_t>(i);
+    // The grid stores particle i under its slot: its place in the domains'
+    // lists (by domain, then by i), so a domain's particles are adjacent in
+    // memory. Slot start_[c] + k is the k-th particle of domain c, as it was
+    // when the grid stored particles by index: the trials and their outcomes
+    // are unchanged.
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t slot = fill_[dom_[i]]++;
+      members_[slot] = static_cast<std::uint32_t>(i);
+      slot_radii_[slot] = radii_[i];
+      grid_.insert(static_cast<std::uint32_t>(slot), at(i), radii_[i]);
+    }
     // The tallies are integer sums: the same in any order.
     std::uint64_t accepted = 0, proposed = 0, swapped = 0, swaps = 0;
     for (const auto& list : by_colour_) {
@@ -114,8 +122,8 @@ class Checkerboard {
       }
     }
     (void)threads;
-    for (std::size_t i = 0; i < n; ++i)
-      for (int k = 0; k < D; ++k) pos_[i * D + k] = grid_.position(static_cast<std::uint32_t>(i))[k];
+    for (std::size_t slot = 0; slot < n; ++slot)
+      for (int k = 0; k < D; ++k) pos_[members_[slot] * D + k] = grid_.position(static_cast<std::uint32_t>(slot))[k];
     return Tally{accepted, proposed, swapped, swaps};
   }
 
@@ -145,11 +153,18 @@ class Checkerboard {
     return nd;
   }
 
-  /// Particles i and j (both of domain c) exchange positions if neither then
-  /// overlaps anything nor leaves c (the two cannot overlap each other).
+  std::array<double, D> at(std::size_t i) const {
+    std::array<double, D> x;
+    for (int k = 0; k < D; ++k) x[k] = pos_[i * D + k];
+    return x;
+  }
+
+  /// The particles in slots i and j (both of domain c) exchange positions if
+  /// neither then overlaps anything nor leaves c (the two cannot overlap each
+  /// other).
   bool try_swap(std::uint32_t i, std::uint32_t j, std::size_t c) {
     const std::array<double, D> xi = grid_.position(i), xj = grid_.position(j);
-    const double ri = radii_[i], rj = radii_[j];
+    const double ri = slot_radii_[i], rj = slot_radii_[j];
     if (!inside<D, B>(xj, ri, box_) || !inside<D, B>(xi, rj, box_)) return false;
     if (grid_.domain_of(xj, ri) != c || grid_.domain_of(xi, rj) != c) return false;
     grid_.erase(i);
@@ -162,19 +177,19 @@ class Checkerboard {
 
   Tally run_domain(std::uint32_t c, std::uint64_t seed) {
     Tally t;
-    const std::uint32_t* ids = members_.data() + start_[c];
+    const auto first = static_cast<std::uint32_t>(start_[c]);
     const std::uint64_t count = start_[c + 1] - start_[c];
     if (count == 0) return t;
     DomainRng rng(seed, c);
     for (std::uint64_t m = 0; m < count; ++m) {
-      const std::uint32_t i = ids[rng.bits() % count];
+      const std::uint32_t i = first + static_cast<std::uint32_t>(rng.bits() % count);  // a slot
       if (rng.uniform() < kSwapFraction) {
-        const std::uint32_t j = ids[rng.bits() % count];
+        const std::uint32_t j = first + static_cast<std::uint32_t>(rng.bits() % count);
         ++t.swaps;
         if (j != i && try_swap(i, j, c)) ++t.swapped;
         continue;
       }
-      const double r = radii_[i];
+      const double r = slot_radii_[i];
       std::array<double, D> x = grid_.position(i);
       for (int k = 0; k < D; ++k) {
         x[k] += (2 * rng.uniform() - 1) * kMcStep * r;
@@ -197,7 +212,8 @@ class Checkerboard {
   InsertGrid<D, B> grid_;
   std::array<std::vector<std::uint32_t>, (1u << D)> by_colour_;
   std::vector<std::size_t> start_, fill_, dom_;
-  std::vector<std::uint32_t> members_;
+  std::vector<std::uint32_t> members_;  // slot -> particle
+  std::vector<double> slot_radii_;      // slot -> radius
 };
 
 template <int D, Boundary B>
