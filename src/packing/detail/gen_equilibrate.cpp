@@ -64,7 +64,6 @@ class Checkerboard {
     start_.assign(total + 1, 0);
     fill_.assign(total, 0);
     members_.assign(radii.size(), 0);
-    slot_radii_.assign(radii.size(), 0.0);
     dom_.assign(radii.size(), 0);
     for (std::size_t c = 0; c < total; ++c) {
       std::size_t rest = c;
@@ -103,7 +102,6 @@ class Checkerboard {
     for (std::size_t i = 0; i < n; ++i) {
       const std::size_t slot = fill_[dom_[i]]++;
       members_[slot] = static_cast<std::uint32_t>(i);
-      slot_radii_[slot] = radii_[i];
       grid_.insert(static_cast<std::uint32_t>(slot), at(i), radii_[i]);
     }
     // The tallies are integer sums: the same in any order.
@@ -164,7 +162,7 @@ class Checkerboard {
   /// other).
   bool try_swap(std::uint32_t i, std::uint32_t j, std::size_t c) {
     const std::array<double, D> xi = grid_.position(i), xj = grid_.position(j);
-    const double ri = slot_radii_[i], rj = slot_radii_[j];
+    const double ri = grid_.radius(i), rj = grid_.radius(j);
     if (!inside<D, B>(xj, ri, box_) || !inside<D, B>(xi, rj, box_)) return false;
     if (grid_.domain_of(xj, ri) != c || grid_.domain_of(xi, rj) != c) return false;
     grid_.erase(i);
@@ -189,7 +187,7 @@ class Checkerboard {
         if (j != i && try_swap(i, j, c)) ++t.swapped;
         continue;
       }
-      const double r = slot_radii_[i];
+      const double r = grid_.radius(i);
       std::array<double, D> x = grid_.position(i);
       for (int k = 0; k < D; ++k) {
         x[k] += (2 * rng.uniform() - 1) * kMcStep * r;
@@ -213,7 +211,6 @@ class Checkerboard {
   std::array<std::vector<std::uint32_t>, (1u << D)> by_colour_;
   std::vector<std::size_t> start_, fill_, dom_;
   std::vector<std::uint32_t> members_;  // slot -> particle
-  std::vector<double> slot_radii_;      // slot -> radius
 };
 
 template <int D, Boundary B>

@@ -131,6 +131,7 @@ class InsertGrid {
   }
 
   const std::array<double, D>& position(std::uint32_t id) const { return pos_[id]; }
+  double radius(std::uint32_t id) const { return rad_[id]; }
 
  private:
   struct Level {
