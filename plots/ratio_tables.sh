@@ -12,14 +12,15 @@ cd "$(dirname "$0")/.."
 scale=${1:-default}
 suffix=$([ "$scale" = default ] && echo "" || echo "-$scale")
 
-# Fig. 11: random centres have one ratio (both models agree there by construction).
+# Fig. 11: random centres have only the paper's model (their excluded-volume column is NaN).
 awk -F, '
   /^#/ { if (!hdr) prov = $0; next }
   !hdr { for (i = 1; i <= NF; i++) c[$i] = i; hdr = 1; next }
   { n = $c["n"] + 0; if (n > nmax) nmax = n
     nu = $c["nu"] + 0; if (numin == "" || nu < numin) numin = nu; if (nu > numax) numax = nu
     k = $c["omega"] + 0 SUBSEP $c["placement"] SUBSEP nu SUBSEP n
-    p[k] = $c["T_over_N"] / $c["model_T_over_N"]; e[k] = $c["T_over_N"] / $c["model_excluded_T_over_N"]
+    p[k] = $c["T_over_N"] / $c["model_T_over_N"]
+    if ($c["placement"] == "excluded") e[k] = $c["T_over_N"] / $c["model_excluded_T_over_N"]
     if (!((($c["omega"] + 0)) in seen)) { seen[$c["omega"] + 0] = 1; om[++no] = $c["omega"] + 0 } }
   END {
     printf "Fig. 11 at N = %d, measured T/N over predicted (paper model / excluded-volume model):\n\n", nmax
