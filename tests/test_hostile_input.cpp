@@ -323,6 +323,9 @@ TEST_F(Hostile, SmallerOnes) {
                  "sweeps");
   expect_refused("generate --n 10 --nu 0.1 --placement excluded --method shake --out " + path("x.h5"), "method");
   expect_refused("generate --n 10 --nu 0.1 --method growth --out " + path("x.h5"), "method");
+  // When an equilibration stops: a choice, and only with --equilibrate.
+  expect_refused("generate --n 10 --nu 0.1 --placement excluded --equilibrate --stop soon --out " + path("x.h5"), "stop");
+  expect_refused("generate --n 10 --nu 0.1 --placement excluded --stop stationary --out " + path("x.h5"), "stop");
   // Continuing an equilibration: only with --equilibrate and --out, and only
   // one of the same packing at fewer sweeps.
   ASSERT_EQ(hgrid_run("generate --n 300 --nu 0.3 --omega 4 --placement excluded --equilibrate --sweeps 5 --out " +

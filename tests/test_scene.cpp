@@ -85,6 +85,8 @@ TEST(Scene, RejectsBadInput) {
   expect_error_naming(excluded + "sweeps = 5\n", "packings.sweeps");
   expect_error_naming(excluded + "equilibrate = true\nsweeps = 0\n", "packings.sweeps");
   expect_error_naming(excluded + "equilibrate = true\nsweeps = 2.5\n", "packings.sweeps");
+  expect_error_naming(excluded + "stop = \"stationary\"\n", "packings.stop");
+  expect_error_naming(excluded + "equilibrate = true\nstop = \"soon\"\n", "packings.stop");
   expect_error_naming(excluded + "method = \"shake\"\n", "packings.method");
   expect_error_naming("name = \"t\"\n[packings]\nn = 10\nnu = 0.1\nmethod = \"growth\"\n", "packings.method");
   expect_error_naming("name = \"t\"\n[packings]\nn = 10\nnu = 0.1\nequilibrate = true\n", "packings.equilibrate");
@@ -117,6 +119,12 @@ TEST(Scene, EquilibrationSweepsReachThePackings) {
   EXPECT_EQ(both.points[0].packing.sweeps, 300);
   EXPECT_FALSE(both.points[1].packing.equilibrate);
   EXPECT_NO_THROW(check_packing_spec(both.points[1].packing));
+  // stop = "stationary": the sweeps are the cap; another packing than a run of fixed sweeps.
+  const Scene until = load_scene(write_scene("eq", excluded + "sweeps = 300\nstop = \"stationary\"\n"), "default");
+  EXPECT_EQ(until.points.at(0).packing.stop, EquilibrationStop::stationary);
+  EXPECT_EQ(until.points.at(0).packing.sweeps, 300);
+  EXPECT_EQ(s.points.at(0).packing.stop, EquilibrationStop::sweeps);
+  EXPECT_NE(packing_key(until.points.at(0).packing), packing_key(s.points.at(0).packing));
 }
 
 TEST(Scene, KindSelectsTheRunner) {

@@ -19,7 +19,7 @@ namespace {
 
 struct GenerateOptions {
   PackingSpec spec;
-  std::string boundary = "periodic", placement = "random", method = "auto", out, cache_dir, from;
+  std::string boundary = "periodic", placement = "random", method = "auto", stop = "sweeps", out, cache_dir, from;
   bool quiet = false;
   bool sweeps_given = false;
 };
@@ -28,6 +28,7 @@ void run_generate(GenerateOptions o) {
   o.spec.boundary = parse_boundary(o.boundary);
   o.spec.placement = parse_placement(o.placement);
   o.spec.method = parse_excluded_method(o.method);
+  o.spec.stop = parse_equilibration_stop(o.stop);
   o.spec.progress = !o.quiet;
   if (o.out.empty() == o.cache_dir.empty()) throw InputError("out", "give exactly one of --out FILE and --cache DIR");
   if (o.spec.equilibrate && o.spec.placement != Placement::excluded)
@@ -83,6 +84,10 @@ void register_generate_commands(CLI::App& app) {
                                  "with --equilibrate: Monte Carlo sweeps (N trials each), 1 to " +
                                      std::to_string(kMaxEquilibrationSweeps))
                      ->default_val(kDefaultEquilibrationSweeps);
+  sub->add_option("--stop", o->stop,
+                  "with --equilibrate: sweeps (run all --sweeps) | stationary (stop as soon as the packing's T/N under "
+                  "its optimal Top-Down sizes, K = 0.2, is stationary within its noise; --sweeps is the cap)")
+      ->default_val("sweeps");
   sub->add_option("--threads", o->spec.threads,
                   "excluded-volume placement: threads of sequential addition, growth + FIRE and --equilibrate's Monte Carlo, 0 = all cores (OMP_NUM_THREADS when set), or 1 to " +
                       std::to_string(kMaxThreads) + "; the packing is the same for any number")

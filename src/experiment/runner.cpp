@@ -1,5 +1,6 @@
 #include "experiment/runner.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -32,17 +33,25 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 
 }  // namespace
 
-PointResult run_point(const Scene& scene, const ScenePoint& point, const RunOptions& opt) {
+double estimated_work(const PackingSpec& s) {
+  const double n = static_cast<double>(s.n);
+  if (s.placement != Placement::excluded) return n;
+  const double dense = s.nu / 0.35;
+  return n * (1 + dense * dense * std::sqrt(std::max(1.0, s.omega)) * (s.equilibrate ? 2 : 1));
+}
+
+PointResult run_point(const Scene& scene, const ScenePoint& point, const RunOptions& opt, int threads) {
   PointResult r;
   r.point = point;
   auto t0 = Clock::now();
   // An equilibration shares the cores with the other jobs.
   PackingSpec spec = point.packing;
-  spec.threads = std::max(1, resolve_threads(0) / std::max(1, opt.jobs));
+  spec.threads = threads > 0 ? threads : std::max(1, resolve_threads(0) / std::max(1, opt.jobs));
   const Packing p = cached_packing(spec, opt.packing_dir);
   r.seconds_packing = since(t0);
   r.n = p.size();
   r.nu_achieved = p.packing_fraction();
+  r.equilibration_sweeps = equilibration_sweeps_done(p);
 
   t0 = Clock::now();
   SizeRequest req;
@@ -115,6 +124,15 @@ std::optional<PointFailure> measure_groups(const Scene& scene, const std::vector
                                            std::vector<PointResult>& results) {
   std::size_t total = 0;
   for (const auto& g : groups) total += g.size();
+  // The largest first (stable: ties in scene order).
+  std::vector<std::size_t> order(groups.size());
+  for (std::size_t g = 0; g < order.size(); ++g) order[g] = g;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return estimated_work(scene.points[groups[a].front()].packing) >
+           estimated_work(scene.points[groups[b].front()].packing);
+  });
+  const int jobs = std::max(1, std::min<int>(opt.jobs, static_cast<int>(groups.size())));
+  std::atomic<int> running{jobs};  // jobs not yet out of groups: the cores are theirs
   std::mutex mu;
   JournalWriter jout(journal, scene.source);
   std::atomic<std::size_t> next{0};
@@ -123,15 +141,20 @@ std::optional<PointFailure> measure_groups(const Scene& scene, const std::vector
   Progress progress(opt.progress, what, "points");
   auto worker = [&] {
     for (;;) {
-      const std::size_t g = next++;
-      if (g >= groups.size()) return;
+      const std::size_t at = next++;
+      if (at >= groups.size()) {
+        --running;
+        return;
+      }
+      const std::size_t g = order[at];
       for (std::size_t i : groups[g]) {
         {
           std::lock_guard<std::mutex> lock(mu);
           if (failure) return;
         }
         try {
-          PointResult r = run_point(scene, scene.points[i], opt);
+          const int threads = std::max(1, resolve_threads(0) / std::max(1, running.load()));
+          PointResult r = run_point(scene, scene.points[i], opt, threads);
           std::lock_guard<std::mutex> lock(mu);
           results[i] = r;
           jout.append(r);
@@ -146,7 +169,6 @@ std::optional<PointFailure> measure_groups(const Scene& scene, const std::vector
       }
     }
   };
-  const int jobs = std::max(1, std::min<int>(opt.jobs, static_cast<int>(groups.size())));
   std::vector<std::thread> pool;
   for (int t = 1; t < jobs; ++t) pool.emplace_back(worker);
   worker();

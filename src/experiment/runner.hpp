@@ -16,6 +16,7 @@ struct PointResult {
   ScenePoint point;
   std::size_t n = 0;
   double nu_achieved = 0;
+  std::uint64_t equilibration_sweeps = 0;  // Monte Carlo sweeps the packing had (0: none)
   std::vector<double> sizes;  // cell sizes used (fitted to a periodic box)
   Counters counts;
   double T_over_N = 0, T_cd_over_N = 0, T_ca_over_N = 0;
@@ -33,8 +34,18 @@ struct RunOptions {
   bool progress = true;  // progress lines on stderr
 };
 
-/// Measures one point (generating or reusing its packing).
-PointResult run_point(const Scene& scene, const ScenePoint& point, const RunOptions& opt);
+/// Measures one point (generating or reusing its packing). `threads`: of
+/// the packing's generation (0: the cores shared by opt.jobs jobs); the
+/// packing and the counts do not depend on it.
+PointResult run_point(const Scene& scene, const ScenePoint& point, const RunOptions& opt, int threads = 0);
+
+/// A rough estimate of the work of generating a packing, for scheduling
+/// only (the largest first, so that no long job starts last): n, times more
+/// for excluded-volume packings the denser and the wider their sizes
+/// (compression by growth + FIRE beyond nu = 0.35, and the Monte Carlo at
+/// omega = 50-100, whose large particles' boxes leave one domain per colour,
+/// are the slow ones).
+double estimated_work(const PackingSpec& s);
 
 /// Runs every point of the scene and writes <results_dir>/<name>[-<scale>].h5
 /// and .csv (the default scale has no suffix). Points already measured by an
@@ -54,7 +65,9 @@ struct PointFailure {
 };
 
 /// Measures the points of `groups` into results[i] (sized like
-/// scene.points) on opt.jobs threads, a whole group per thread, appending
+/// scene.points) on opt.jobs threads, a whole group per thread, the groups
+/// of the largest estimated_work first, and each packing generated on the
+/// cores of the jobs that are still running; appending
 /// each finished point to the journal file `journal` (experiment/journal.hpp)
 /// and counting them on a progress line named `what`. After a failure no
 /// further point is started; the first failure is returned, not thrown.

@@ -23,7 +23,7 @@ using detail::strings;
 
 const detail::SceneSections kSections = {
     {"packings", {"d", "n", "nu", "alpha", "omega", "sigma", "dist", "boundary", "placement", "method", "seeds",
-                  "equilibrate", "sweeps"}}};
+                  "equilibrate", "sweeps", "stop"}}};
 
 /// The packing lists of a scene, before expansion.
 struct PackingLists {
@@ -32,6 +32,8 @@ struct PackingLists {
   bool equilibrate = false;
   std::int64_t sweeps = kDefaultEquilibrationSweeps;
   bool sweeps_given = false;
+  EquilibrationStop stop = EquilibrationStop::sweeps;
+  bool stop_given = false;
   ExcludedMethod method = ExcludedMethod::automatic;
   bool method_given = false;
 };
@@ -58,6 +60,9 @@ void read_packings(const toml::table& t, PackingLists& p, const std::string& whe
       auto b = v.value<bool>();
       if (!b) throw InputError(name, "must be true or false");
       p.equilibrate = *b;
+    } else if (key == "stop") {
+      p.stop = parse_equilibration_stop(detail::one_string(v, name), name);
+      p.stop_given = true;
     } else if (key == "sweeps") {
       auto i = v.value<std::int64_t>();
       if (!i || *i < 1 || *i > kMaxEquilibrationSweeps)
@@ -71,6 +76,7 @@ void read_packings(const toml::table& t, PackingLists& p, const std::string& whe
 void check_lists(const PackingLists& p) {
   if (p.n.empty()) throw InputError("packings.n", "is required (number of particles, >= 1)");
   if (p.sweeps_given && !p.equilibrate) throw InputError("packings.sweeps", "only applies with equilibrate = true");
+  if (p.stop_given && !p.equilibrate) throw InputError("packings.stop", "only applies with equilibrate = true");
   if (p.nu.empty()) throw InputError("packings.nu", "is required (packing fraction, > 0)");
   for (double d : p.d)
     if (d != 2 && d != 3) throw InputError("packings.d", "must be 2 or 3");
@@ -214,6 +220,7 @@ Scene load_scene_text(const std::string& text, const std::string& scale, const s
                           p.method = lists.method;
                           p.equilibrate = lists.equilibrate;
                           p.sweeps = static_cast<int>(lists.sweeps);
+                          p.stop = lists.stop;
                         }
                         pt.search = search;
                         s.points.push_back(pt);

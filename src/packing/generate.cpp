@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iostream>
 #include <numeric>
+#include <optional>
 #include <string>
 
 #include "grid/threads.hpp"
@@ -14,7 +15,11 @@
 #include "packing/detail/gen_equilibrate.hpp"
 #include "packing/detail/gen_relax.hpp"
 #include "packing/detail/gen_rsa.hpp"
+#include "packing/detail/gen_stationary.hpp"
+#include "grid/dispatch.hpp"
 #include "grid/error.hpp"
+#include "grid/hgrid.hpp"
+#include "packing/packing_sizes.hpp"
 #include "packing/rcp.hpp"
 
 namespace hgrid {
@@ -44,6 +49,10 @@ void check_spec(const PackingSpec& s) {
     throw InputError("equilibrate", "only applies to excluded-volume placement");
   if (s.method != ExcludedMethod::automatic && s.placement != Placement::excluded)
     throw InputError("method", "only applies to excluded-volume placement");
+  if (s.stop != EquilibrationStop::sweeps && !s.equilibrate)
+    throw InputError("stop", "only applies to an equilibration (equilibrate)");
+  if (!(s.stationary_tol > 0 && s.stationary_tol <= 0.1))
+    throw InputError("stationary_tol", "must be in (0, 0.1] (got " + brief(s.stationary_tol) + ")");
   check_threads(s.threads);
   if (s.sweeps < 1 || s.sweeps > kMaxEquilibrationSweeps)
     throw InputError("sweeps", "must be in [1, " + std::to_string(kMaxEquilibrationSweeps) + "] (got " +
@@ -144,6 +153,12 @@ ExcludedMethod parse_excluded_method(const std::string& s, const std::string& fi
   throw InputError(field, "must be 'auto', 'rsa' or 'growth' (got '" + s + "')");
 }
 
+EquilibrationStop parse_equilibration_stop(const std::string& s, const std::string& field) {
+  if (s == "sweeps") return EquilibrationStop::sweeps;
+  if (s == "stationary") return EquilibrationStop::stationary;
+  throw InputError(field, "must be 'sweeps' or 'stationary' (got '" + s + "')");
+}
+
 Placement parse_placement(const std::string& s, const std::string& field) {
   if (s == "random") return Placement::random;
   if (s == "excluded") return Placement::excluded;
@@ -201,17 +216,95 @@ constexpr const char* kChainAttr = "equilibration_chain";
 constexpr const char* kRngAttr = "equilibration_rng_state";
 constexpr const char* kTallyAttrs[4] = {"equilibration_moves_accepted", "equilibration_moves_proposed",
                                         "equilibration_swaps_accepted", "equilibration_swaps_proposed"};
+/// stop = stationary: the observable's samples so far (every
+/// kStationarySampleSweeps sweeps, %.17g, comma separated), what resuming
+/// needs to take the same decision.
+constexpr const char* kSeriesAttr = "stationarity_series";
+
+/// The stationarity observable's state during an equilibration.
+struct StopState {
+  std::vector<double> sizes;   // the grid's cell sizes (the packing's own optimal Top-Down sizes)
+  std::vector<double> series;  // T/N every kStationarySampleSweeps sweeps
+  detail::Stationarity last;   // the test after the last sample
+};
+
+std::string join_series(const std::vector<double>& v) {
+  std::string out;
+  char buf[32];
+  for (double x : v) {
+    std::snprintf(buf, sizeof buf, "%.17g", x);
+    if (!out.empty()) out += ',';
+    out += buf;
+  }
+  return out;
+}
+
+/// The series recorded in p, or nothing when it is absent or unreadable.
+std::optional<std::vector<double>> recorded_series(const Packing& p) {
+  const auto it = p.str_attrs.find(kSeriesAttr);
+  if (it == p.str_attrs.end()) return std::nullopt;
+  std::vector<double> v;
+  const std::string& t = it->second;
+  std::size_t at = 0;
+  while (at < t.size()) {
+    const std::size_t end = std::min(t.find(',', at), t.size());
+    try {
+      std::size_t used = 0;
+      const std::string item = t.substr(at, end - at);
+      v.push_back(std::stod(item, &used));
+      if (used != item.size() || !std::isfinite(v.back())) return std::nullopt;
+    } catch (const std::exception&) {
+      return std::nullopt;
+    }
+    at = end + 1;
+  }
+  return v;
+}
+
+/// T/N = (narrow-phase checks + K cell accesses) / N of the counted HGrid
+/// search of p with these sizes (Top-Down, K = kStationaryK).
+double counted_T_over_N(const Packing& p, const std::vector<double>& sizes, int threads) {
+  double t = 0;
+  dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
+    constexpr int D = decltype(dim)::value;
+    constexpr Boundary B = decltype(bnd)::value;
+    auto spheres = p.spheres<D>();
+    if constexpr (B == Boundary::periodic)  // the Monte Carlo's moves wrap; a start may lie on the far face
+      for (auto& sp : spheres)
+        for (int k = 0; k < D; ++k) sp.x[k] = detail::wrap(sp.x[k], p.box[k]);
+    const HGrid<D, B> grid(spheres, p.extent<D>(), GridParams{sizes, Search::top_down, threads});
+    t = grid.template for_each_pair<Counted>([](std::uint32_t, std::uint32_t) {}).cost(kStationaryK) /
+        static_cast<double>(p.size());
+  });
+  return t;
+}
 
 /// Spec, achieved nu and quality attributes of p, generated for s (with
 /// e.sweeps sweeps so far when s.equilibrate; rng: the generator's state
 /// then, recorded for every excluded-volume packing: a placement is where
 /// each equilibration of it starts).
 void describe(Packing& p, const PackingSpec& s, const Distribution& dist, double rcp, const detail::Equilibration& e,
-              const detail::GenRng& rng) {
+              const detail::GenRng& rng, const StopState* stop = nullptr, bool final = false) {
   PackingSpec at = s;
   if (s.placement == Placement::excluded) p.str_attrs[kRngAttr] = rng.state();
   if (s.equilibrate) {
-    at.sweeps = static_cast<int>(e.sweeps);
+    // A stage part-way is the chain at e.sweeps; the end of a run that
+    // stopped when stationary is the packing its spec (cap) names.
+    if (!(final && s.stop == EquilibrationStop::stationary)) at.sweeps = static_cast<int>(e.sweeps);
+    p.str_attrs["equilibration_stop"] = to_string(s.stop);
+    if (stop) {
+      p.str_attrs[kSeriesAttr] = join_series(stop->series);
+      p.num_attrs["stationarity_sample_sweeps"] = detail::kStationarySampleSweeps;
+      p.num_attrs["stationarity_rel_tol"] = s.stationary_tol;
+      p.num_attrs["stationarity_K"] = kStationaryK;
+      p.str_attrs["stationarity_observable"] = "T/N, optimal Top-Down sizes, K = 0.2";
+      p.str_attrs["stationarity_rule"] = detail::stationarity_rule(s.stationary_tol);
+      p.num_attrs["stationarity_mean"] = stop->last.mean;
+      p.num_attrs["stationarity_drift_per_doubling"] = stop->last.drift;
+      p.num_attrs["stationarity_drift_se"] = stop->last.se;
+      p.num_attrs["stationarity_samples"] = static_cast<double>(stop->last.samples);
+      p.num_attrs["stationarity_reached"] = stop->last.stationary ? 1 : 0;
+    }
     p.num_attrs["equilibration_acceptance"] = e.displacement_acceptance();
     p.num_attrs["equilibration_swap_acceptance"] = e.swap_acceptance();
     p.num_attrs["equilibration_sweeps"] = static_cast<double>(e.sweeps);
@@ -273,6 +366,12 @@ std::string resume_mismatch(const Packing& from, const PackingSpec& s) {
     if (!from.num_attrs.count(a)) return "it records no resumable equilibration";
   const double done = from.num_attrs.at("equilibration_sweeps");
   if (!(done >= 1 && done <= s.sweeps && done == std::floor(done))) return "it is further than the requested sweeps";
+  if (s.stop == EquilibrationStop::stationary) {
+    const auto series = recorded_series(from);
+    if (!series || series->size() != static_cast<std::size_t>(done) / detail::kStationarySampleSweeps)
+      return "it records no stationarity series for its sweeps";
+    if (detail::test_stationary(*series, s.stationary_tol).stationary) return "it ended its run (stationary)";
+  }
   PackingSpec at = s;
   at.sweeps = static_cast<int>(done);
   return packing_mismatch(from, at);
@@ -309,6 +408,25 @@ Packing generate_packing(const PackingSpec& s, const Packing* from, const Packin
     else place_excluded(s, rcp, rng, p);
   }
   if (s.equilibrate) {
+    std::optional<StopState> stop;
+    detail::EquilibrationObserver observe;
+    if (s.stop == EquilibrationStop::stationary) {
+      stop.emplace();
+      SizeRequest req;  // the figures' sizes: optimal, Top-Down, K = 0.2
+      stop->sizes = model_sizes(p, req, Search::top_down, kStationaryK);
+      if (from && !is_placement(*from)) stop->series = *recorded_series(*from);
+      const int count_threads = resolve_threads(s.threads);
+      observe = [&, count_threads](const detail::Equilibration& at, std::string& extra) {
+        if (at.sweeps % detail::kStationarySampleSweeps) return false;
+        stop->series.push_back(counted_T_over_N(p, stop->sizes, count_threads));
+        stop->last = detail::test_stationary(stop->series, s.stationary_tol);
+        char buf[96];
+        std::snprintf(buf, sizeof buf, ", T/N %.4f, drift/doubling %+.2f %%", stop->series.back(),
+                      stop->last.mean > 0 ? 100 * stop->last.drift / stop->last.mean : 0.0);
+        extra = buf;
+        return stop->last.stationary;
+      };
+    }
     Progress progress(s.progress, "hard-sphere Monte Carlo equilibration" +
                                       (!from ? std::string()
                                        : e.sweeps == 0 ? std::string(" (from the given placement)")
@@ -317,11 +435,15 @@ Packing generate_packing(const PackingSpec& s, const Packing* from, const Packin
     if (checkpoint)
       save = [&](const detail::Equilibration& at) {
         Packing c = p;  // positions as after at.sweeps sweeps
-        describe(c, s, *dist, rcp, at, rng);
+        describe(c, s, *dist, rcp, at, rng, stop ? &*stop : nullptr);
         checkpoint(c);
       };
     detail::equilibrate(s.d, s.boundary, p.box, p.radii, p.positions, static_cast<std::uint64_t>(s.sweeps), s.threads,
-                        rng, progress, e, save, s.checkpoint_seconds);
+                        rng, progress, e, save, s.checkpoint_seconds, observe);
+    if (s.boundary == Boundary::periodic)
+      for (std::size_t i = 0; i < p.positions.size(); ++i) p.positions[i] = detail::wrap(p.positions[i], p.box[i % s.d]);
+    describe(p, s, *dist, rcp, e, rng, stop ? &*stop : nullptr, true);
+    return p;
   }
   if (s.boundary == Boundary::periodic)
     for (std::size_t i = 0; i < p.positions.size(); ++i) p.positions[i] = detail::wrap(p.positions[i], p.box[i % s.d]);
@@ -355,7 +477,11 @@ std::string packing_key(const PackingSpec& s) {
        (s.placement == Placement::excluded && s.method != ExcludedMethod::automatic
             ? std::string(" method=") + to_string(s.method)
             : std::string()) +
-       " seed=" + std::to_string(s.seed) + " equilibrate=" + (s.equilibrate ? "1 checkerboard sweeps=" + std::to_string(s.sweeps) : "0");
+       " seed=" + std::to_string(s.seed) + " equilibrate=" +
+       (s.equilibrate ? std::string("1 checkerboard") +
+                            (s.stop == EquilibrationStop::stationary ? " until=" + detail::stationarity_rule(s.stationary_tol) : std::string()) +
+                            " sweeps=" + std::to_string(s.sweeps)
+                      : "0");
   return k;
 }
 

@@ -33,6 +33,21 @@ inline const char* to_string(ExcludedMethod m) {
   return m == ExcludedMethod::automatic ? "auto" : m == ExcludedMethod::rsa ? "rsa" : "growth";
 }
 
+/// When an equilibration ends: after its sweeps, or as soon as the packing's
+/// T/N (optimal Top-Down sizes for its radii, K = 0.2: the figures' counted
+/// work) is stationary within its noise (packing/detail/gen_stationary.hpp),
+/// the sweeps then being a cap.
+enum class EquilibrationStop { sweeps, stationary };
+/// "sweeps" | "stationary"; anything else throws InputError naming `field`.
+EquilibrationStop parse_equilibration_stop(const std::string& s, const std::string& field = "stop");
+inline const char* to_string(EquilibrationStop s) { return s == EquilibrationStop::sweeps ? "sweeps" : "stationary"; }
+/// The observable of EquilibrationStop::stationary: K and search of its T/N.
+inline constexpr double kStationaryK = 0.2;
+/// Largest drift of T/N per doubling of the run, widened by two standard
+/// errors, relative to T/N, that counts as stationary (0.1 %; the figures
+/// ask their T/N within 0.5 %).
+inline constexpr double kStationaryRelTol = 1e-3;
+
 /// Everything that determines a generated packing (and its cache key).
 /// Monte Carlo sweeps of an equilibration unless a spec says otherwise.
 inline constexpr int kDefaultEquilibrationSweeps = 20;
@@ -50,7 +65,9 @@ struct PackingSpec {
   ExcludedMethod method = ExcludedMethod::automatic;  // excluded placement only
   std::uint64_t seed = 1;
   bool equilibrate = false;  // excluded only: hard-sphere equilibration after placement
-  int sweeps = kDefaultEquilibrationSweeps;  // equilibrate: Monte Carlo sweeps (n trials each)
+  int sweeps = kDefaultEquilibrationSweeps;  // equilibrate: Monte Carlo sweeps (n trials each); the cap with stop = stationary
+  EquilibrationStop stop = EquilibrationStop::sweeps;  // equilibrate: when it ends
+  double stationary_tol = kStationaryRelTol;  // stop = stationary: the test's tolerance, in (0, 0.1]
   int threads = 0;           // excluded: threads of sequential addition, growth + FIRE and equilibration (grid/threads.hpp);
                              // the packing does not depend on it
   bool progress = true;      // progress lines on stderr for long generations

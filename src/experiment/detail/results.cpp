@@ -46,6 +46,8 @@ nlohmann::json detail::result_to_json(const PointResult& r) {
           {"seed", s.seed},
           {"equilibrate", s.equilibrate},
           {"sweeps", s.sweeps},
+          {"stop", to_string(s.stop)},
+          {"equilibration_sweeps", r.equilibration_sweeps},
           {"search", to_string(r.point.search)},
           {"levels", c.levels},
           {"sizes", r.sizes},
@@ -134,6 +136,16 @@ PointResult detail::result_from_json(const nlohmann::json& j) {
     if (sweeps < 1 || sweeps > static_cast<std::uint64_t>(kMaxEquilibrationSweeps))
       throw InputError("sweeps", "must be in [1, " + std::to_string(kMaxEquilibrationSweeps) + "]");
     s.sweeps = static_cast<int>(sweeps);
+  }
+  // Journals written before an equilibration could stop when stationary have
+  // neither: all its sweeps were run.
+  if (j.contains("stop")) s.stop = parse_equilibration_stop(text_of(j, "stop"));
+  if (j.contains("equilibration_sweeps")) {
+    r.equilibration_sweeps = count_of(j, "equilibration_sweeps");
+    if (r.equilibration_sweeps > (s.equilibrate ? static_cast<std::uint64_t>(s.sweeps) : 0))
+      throw InputError("equilibration_sweeps", "must be at most the sweeps asked (0 without equilibrate)");
+  } else {
+    r.equilibration_sweeps = s.equilibrate ? static_cast<std::uint64_t>(s.sweeps) : 0;
   }
   r.point.search = parse_search(text_of(j, "search"));
   r.n = count_of(j, "n");
@@ -247,8 +259,6 @@ void write_results(const std::string& stem, const Scene& scene, const std::vecto
   std::size_t lmax = 0;
   for (const auto& r : results) {
     rows.push_back(detail::result_to_json(r));
-    const PackingSpec& s = r.point.packing;  // a column derived from the spec, not journalled
-    rows.back()["equilibration_sweeps"] = s.equilibrate ? s.sweeps : 0;
     lmax = std::max<std::size_t>(lmax, r.counts.levels);
   }
   const hsize_t P = rows.size(), L = lmax;

@@ -216,7 +216,7 @@ class Checkerboard {
 template <int D, Boundary B>
 void run(const std::array<double, 3>& box3, const std::vector<double>& radii, std::vector<double>& pos,
          std::uint64_t target, int threads, GenRng& rng, Progress& progress, Equilibration& e,
-         const EquilibrationCheckpoint& checkpoint, double checkpoint_seconds) {
+         const EquilibrationCheckpoint& checkpoint, double checkpoint_seconds, const EquilibrationObserver& observe) {
   Extent<D> box;
   for (int k = 0; k < D; ++k) box[k] = box3[k];
   Checkerboard<D, B> board(box, radii, pos);
@@ -230,10 +230,13 @@ void run(const std::array<double, 3>& box3, const std::vector<double>& radii, st
     e.swaps_accepted += t.swapped;
     e.swaps_proposed += t.swaps;
     ++e.sweeps;
+    std::string extra;
+    const bool done = observe && observe(e, extra);
     char buf[96];
     std::snprintf(buf, sizeof buf, "sweep %llu, acceptance %.2f (moves), %.2f (swaps)",
                   static_cast<unsigned long long>(e.sweeps), e.displacement_acceptance(), e.swap_acceptance());
-    progress.update(static_cast<double>(e.sweeps - first) / static_cast<double>(target - first), buf);
+    progress.update(static_cast<double>(e.sweeps - first) / static_cast<double>(target - first), buf + extra);
+    if (done) break;
     if (checkpoint && e.sweeps < target && progress.elapsed() - saved >= checkpoint_seconds) {
       checkpoint(e);
       saved = progress.elapsed();
@@ -245,9 +248,10 @@ void run(const std::array<double, 3>& box3, const std::vector<double>& radii, st
 
 void equilibrate(int d, Boundary b, const std::array<double, 3>& box, const std::vector<double>& radii,
                  std::vector<double>& pos, std::uint64_t target, int threads, GenRng& rng, Progress& progress,
-                 Equilibration& e, const EquilibrationCheckpoint& checkpoint, double checkpoint_seconds) {
+                 Equilibration& e, const EquilibrationCheckpoint& checkpoint, double checkpoint_seconds,
+                 const EquilibrationObserver& observe) {
   const auto go = [&](auto run_one) {
-    run_one(box, radii, pos, target, threads, rng, progress, e, checkpoint, checkpoint_seconds);
+    run_one(box, radii, pos, target, threads, rng, progress, e, checkpoint, checkpoint_seconds, observe);
   };
   if (d == 2) {
     if (b == Boundary::walls) go(run<2, Boundary::walls>);

@@ -30,6 +30,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "packing/detail/gen_common.hpp"
@@ -61,17 +62,22 @@ struct Equilibration {
 /// sweeps: what resuming needs.
 using EquilibrationCheckpoint = std::function<void(const Equilibration& e)>;
 
+/// Called after every sweep with pos as after e.sweeps sweeps; returns true
+/// to end the run there (before target), and may add to the progress line.
+using EquilibrationObserver = std::function<bool(const Equilibration& e, std::string& progress_extra)>;
+
 /// Domains are at least (1 + kDomainMargin) largest diameters wide, so that
 /// rounding cannot make a search reach a domain two away.
 inline constexpr double kDomainMargin = 1e-6;
 
-/// Runs sweeps until e.sweeps == target (e: the totals so far; zero for a
-/// fresh start). A sweep draws only from rng and reads only pos, so a run
+/// Runs sweeps until e.sweeps == target or `observe` says stop (e: the
+/// totals so far; zero for a fresh start). A sweep draws only from rng and reads only pos, so a run
 /// resumed from a checkpoint's pos, rng state and e is the uninterrupted
 /// run, bit for bit. `threads` as in grid/threads.hpp (0 = all cores); the
 /// result does not depend on it.
 void equilibrate(int d, Boundary b, const std::array<double, 3>& box, const std::vector<double>& radii,
                  std::vector<double>& pos, std::uint64_t target, int threads, GenRng& rng, Progress& progress,
-                 Equilibration& e, const EquilibrationCheckpoint& checkpoint = {}, double checkpoint_seconds = 300);
+                 Equilibration& e, const EquilibrationCheckpoint& checkpoint = {}, double checkpoint_seconds = 300,
+                 const EquilibrationObserver& observe = {});
 
 }  // namespace hgrid::detail

@@ -1,0 +1,187 @@
+// An equilibration that stops when stationary: the test on a series, and
+// the generator's runs with stop = stationary (the same chain as a run of
+// fixed sweeps, cut where the test passes; the same for any thread count;
+// resumed bit for bit; no overlaps, nu exact).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "grid/error.hpp"
+#include "packing/detail/gen_stationary.hpp"
+#include "packing/generate.hpp"
+
+namespace hgrid {
+namespace {
+
+constexpr std::uint64_t kSeed = 20140901;
+constexpr double kNuTol = 1e-12;  // achieved nu, relative
+
+TEST(Stationary, ConstantAndNoisySeriesPass) {
+  using detail::kStationaryMinSamples;
+  std::vector<double> flat(kStationaryMinSamples - 1, 10.0);
+  EXPECT_FALSE(detail::test_stationary(flat, kStationaryRelTol).stationary) << "fewer samples than the minimum";
+  flat.push_back(10.0);
+  EXPECT_TRUE(detail::test_stationary(flat, kStationaryRelTol).stationary);
+  std::mt19937_64 rng(kSeed);  // seeded: white noise of 0.1 % around 10
+  std::normal_distribution<double> noise(0.0, 0.01);
+  std::vector<double> noisy;
+  for (int i = 0; i < 400; ++i) noisy.push_back(10.0 + noise(rng));
+  const auto t = detail::test_stationary(noisy, kStationaryRelTol);
+  EXPECT_TRUE(t.stationary) << "drift " << t.drift << ", se " << t.se;
+  EXPECT_EQ(t.samples, 200u);
+}
+
+TEST(Stationary, DriftBeyondNoiseAndToleranceFails) {
+  // A logarithmic relaxation, 0.2 % per doubling, no noise: measured exactly.
+  const auto at = [](std::size_t k) { return std::log(static_cast<double>((k + 1) * detail::kStationarySampleSweeps)); };
+  std::vector<double> drift;
+  for (std::size_t k = 0; k < 400; ++k) drift.push_back(10.0 + 0.02 / std::log(2.0) * at(k));
+  const auto t = detail::test_stationary(drift, kStationaryRelTol);
+  EXPECT_FALSE(t.stationary);
+  EXPECT_NEAR(t.drift, 0.02, 1e-9);
+  // 0.02 % per doubling is within the tolerance (0.1 %).
+  std::vector<double> slow;
+  for (std::size_t k = 0; k < 400; ++k) slow.push_back(10.0 + 0.002 / std::log(2.0) * at(k));
+  EXPECT_TRUE(detail::test_stationary(slow, kStationaryRelTol).stationary);
+  // A linear drift of 1 % over the run: 0.5 % over its second half.
+  std::vector<double> linear;
+  for (std::size_t k = 0; k < 400; ++k) linear.push_back(10.0 * (1 + 1e-2 * static_cast<double>(k) / 400));
+  EXPECT_FALSE(detail::test_stationary(linear, kStationaryRelTol).stationary);
+  // Noise hides no drift: 1 % noise around a constant fails (it would need
+  // far more samples), where the drift alone is zero.
+  std::mt19937_64 rng(kSeed);
+  std::normal_distribution<double> noise(0.0, 0.1);
+  std::vector<double> noisy;
+  for (int i = 0; i < 400; ++i) noisy.push_back(10.0 + noise(rng));
+  EXPECT_FALSE(detail::test_stationary(noisy, kStationaryRelTol).stationary);
+}
+
+/// Stationary before its cap under a tolerance of 1 % (the figures' 0.1 %
+/// needs N ~ 10^5); small_spec's, at the default tolerance, runs to its cap.
+constexpr double kLooseTol = 1e-2;
+PackingSpec stationary_spec(int d, Boundary b, int threads) {
+  PackingSpec s;
+  s.d = d;
+  s.n = 2000;
+  s.nu = 0.3;
+  s.alpha = -3;
+  s.omega = 2;
+  s.stationary_tol = kLooseTol;
+  s.boundary = b;
+  s.placement = Placement::excluded;
+  s.seed = kSeed;
+  s.equilibrate = true;
+  s.stop = EquilibrationStop::stationary;
+  s.sweeps = 400;  // the cap
+  s.threads = threads;
+  s.progress = false;
+  return s;
+}
+
+PackingSpec small_spec(int d, Boundary b) {
+  PackingSpec s = stationary_spec(d, b, 1);
+  s.n = 1500;
+  s.nu = 0.45;
+  s.omega = 5;
+  s.sweeps = 150;
+  s.stationary_tol = kStationaryRelTol;
+  return s;
+}
+
+// A noisy small packing runs to its cap, not stationary, and is the chain
+// of fixed sweeps.
+TEST(Stationary, NoisyPackingRunsToItsCap) {
+  for (const auto& [d, b] : std::vector<std::pair<int, Boundary>>{{3, Boundary::walls}, {2, Boundary::periodic}}) {
+    SCOPED_TRACE("d " + std::to_string(d) + " " + to_string(b) + " seed " + std::to_string(kSeed));
+    const PackingSpec s = small_spec(d, b);
+    const Packing p = generate_packing(s);
+    EXPECT_EQ(equilibration_sweeps_done(p), 150u);
+    EXPECT_EQ(p.num_attrs.at("stationarity_reached"), 0.0);
+    EXPECT_EQ(packing_mismatch(p, s), "");
+    PackingSpec fixed = s;
+    fixed.stop = EquilibrationStop::sweeps;
+    EXPECT_EQ(generate_packing(fixed).positions, p.positions);
+    EXPECT_EQ(assess_packing(p, nullptr).max_rel_overlap, 0.0);
+  }
+}
+
+// The run that stopped is the chain of fixed sweeps cut at its stop: the
+// same positions as a stop = sweeps run of exactly that many sweeps.
+TEST(Stationary, StopsOnTheSameChainAndIsExact) {
+  for (const auto& [d, b] : std::vector<std::pair<int, Boundary>>{{3, Boundary::periodic}, {2, Boundary::walls}}) {
+    SCOPED_TRACE("d " + std::to_string(d) + " " + to_string(b) + " seed " + std::to_string(kSeed));
+    const PackingSpec s = stationary_spec(d, b, 1);
+    const Packing p = generate_packing(s);
+    const std::uint64_t done = equilibration_sweeps_done(p);
+    EXPECT_GE(done, detail::kStationaryMinSamples * detail::kStationarySampleSweeps);
+    EXPECT_LT(done, 400u) << "should be stationary well before the cap";
+    EXPECT_EQ(done % detail::kStationarySampleSweeps, 0u);
+    EXPECT_EQ(p.num_attrs.at("stationarity_reached"), 1.0);
+    EXPECT_EQ(p.str_attrs.at("equilibration_stop"), "stationary");
+    EXPECT_EQ(p.str_attrs.at("cache_key"), packing_key(s));
+    EXPECT_EQ(packing_mismatch(p, s), "");
+    EXPECT_EQ(assess_packing(p, nullptr).max_rel_overlap, 0.0);
+    EXPECT_NEAR(p.packing_fraction() / s.nu, 1.0, kNuTol);
+    PackingSpec fixed = s;
+    fixed.stop = EquilibrationStop::sweeps;
+    fixed.sweeps = static_cast<int>(done);
+    const Packing q = generate_packing(fixed);
+    EXPECT_EQ(p.positions, q.positions);
+    EXPECT_NE(packing_key(fixed), packing_key(s));
+    // The same for any number of threads (5 oversubscribes 2 cores).
+    for (const int t : {2, 5}) {
+      const Packing m = generate_packing(stationary_spec(d, b, t));
+      EXPECT_EQ(m.positions, p.positions) << t << " threads";
+      EXPECT_EQ(m.str_attrs.at("stationarity_series"), p.str_attrs.at("stationarity_series"));
+    }
+  }
+}
+
+// Killed part-way (a checkpoint after every sweep, killed after the 37th:
+// not a sample sweep), resumed: the uninterrupted run, bit for bit, with
+// the same decision.
+TEST(Stationary, ResumedRunTakesTheSameDecision) {
+  PackingSpec s = stationary_spec(2, Boundary::periodic, 1);
+  const Packing whole = generate_packing(s);
+  s.checkpoint_seconds = 0;
+  std::vector<Packing> checkpoints;
+  struct Killed {};
+  EXPECT_THROW(generate_packing(s, nullptr,
+                                [&](const Packing& c) {
+                                  checkpoints.push_back(c);
+                                  if (checkpoints.size() == 37) throw Killed{};
+                                }),
+               Killed);
+  ASSERT_EQ(checkpoints.size(), 37u);
+  EXPECT_EQ(resume_mismatch(checkpoints.back(), s), "");
+  const Packing resumed = generate_packing(s, &checkpoints.back());
+  EXPECT_EQ(resumed.positions, whole.positions);
+  EXPECT_EQ(resumed.str_attrs.at("stationarity_series"), whole.str_attrs.at("stationarity_series"));
+  EXPECT_EQ(equilibration_sweeps_done(resumed), equilibration_sweeps_done(whole));
+  // A checkpoint whose series was lost cannot be resumed.
+  Packing lost = checkpoints.back();
+  lost.str_attrs.erase("stationarity_series");
+  EXPECT_NE(resume_mismatch(lost, s), "");
+}
+
+TEST(Stationary, StopNeedsAnEquilibration) {
+  PackingSpec s = stationary_spec(3, Boundary::periodic, 1);
+  s.equilibrate = false;
+  EXPECT_THROW(generate_packing(s), InputError);
+  EXPECT_THROW(parse_equilibration_stop("soon"), InputError);
+  EXPECT_EQ(parse_equilibration_stop("stationary"), EquilibrationStop::stationary);
+  s.equilibrate = true;
+  for (const double tol : {0.0, -1e-3, 0.2, std::nan("")}) {
+    s.stationary_tol = tol;
+    EXPECT_THROW(generate_packing(s), InputError) << tol;
+  }
+  // The tolerance is part of the packing's identity.
+  PackingSpec other = stationary_spec(3, Boundary::periodic, 1);
+  other.stationary_tol = 2e-2;
+  EXPECT_NE(packing_key(other), packing_key(stationary_spec(3, Boundary::periodic, 1)));
+}
+
+}  // namespace
+}  // namespace hgrid
