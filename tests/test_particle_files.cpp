@@ -119,11 +119,21 @@ TEST_F(ParticleFiles, LammpsDataFilesAsExportWritesThemAndByHand) {
   // By hand: comments, other sections, image flags, a shifted box.
   const std::string hand =
       "my title\n\n2 atoms # two\n1 atom types\n-1 1 xlo xhi\n-2 2 ylo yhi\n0 1 zlo zhi\n\nMasses\n\n1 1.0\n\n"
-      "Atoms # sphere\n\n1 1 0.5 1.0 0 0 0.5 0 0 0\n2 1 0.25 1.0 0.5 1 0.5 1 0 0 # last\n\nVelocities\n\n1 0 0 0 0 0 0\n";
+      "Atoms # sphere\n\n1 1 0.5 1.0 0 0 0.5 0 0 0\n2 1 0.25 1.0 0.5 1 0.75 1 0 0 # last\n\nVelocities\n\n1 0 0 0 0 0 0\n";
   const ParticleSet h = parse_particles(hand, "hand.data");
   EXPECT_EQ(h.radii, (std::vector<double>{0.25, 0.125}));
-  EXPECT_EQ(h.positions, (std::vector<double>{1, 2, 0.5, 1.5, 3, 0.5}));
+  EXPECT_EQ(h.positions, (std::vector<double>{1, 2, 0.5, 1.5, 3, 0.75}));
   EXPECT_EQ(*h.box, (std::array<double, 3>{2, 4, 1}));
+  // A 2D run's write_data: every z = 0 in zlo zhi = 0 1 (not around 0),
+  // and the tilts of a triclinic box that has none: 2D, orthogonal.
+  const std::string flat =
+      "LAMMPS data file via write_data\n\n2 atoms\n1 atom types\n\n0 10 xlo xhi\n0 8 ylo yhi\n0 1 zlo zhi\n"
+      "0 0 0 xy xz yz\n\nAtoms # sphere\n\n1 1 1 1 2 3 0 0 0 0\n2 1 2 1 6 5 0 0 0 0\n";
+  const ParticleSet f = parse_particles(flat, "flat.data");
+  EXPECT_EQ(f.d, 2);
+  EXPECT_EQ(f.positions, (std::vector<double>{2, 3, 6, 5}));
+  EXPECT_EQ((*f.box)[0], 10);
+  EXPECT_EQ((*f.box)[1], 8);
 }
 
 TEST_F(ParticleFiles, LammpsDumpFilesFirstSnapshotAnyColumns) {
@@ -139,6 +149,13 @@ TEST_F(ParticleFiles, LammpsDumpFilesFirstSnapshotAnyColumns) {
   }
   const std::string walls = "ITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS ff ff ff\n0 2\n0 2\n0 2\nITEM: ATOMS x y z radius\n1 1 1 0.5\n";
   EXPECT_EQ(parse_particles(walls, "w.dump").boundary, Boundary::walls);
+  // The header of a triclinic box without tilt: the orthogonal box.
+  const ParticleSet t = parse_particles("ITEM: NUMBER OF ATOMS\n2\nITEM: BOX BOUNDS xy xz yz pp pp pp\n0 2 0\n0 3 0\n"
+                                        "0 4 0\nITEM: ATOMS x y z radius\n1 1 1 0.5\n0.5 0.5 2 0.25\n",
+                                        "t.dump");
+  EXPECT_EQ(t.d, 3);
+  EXPECT_EQ(*t.box, (std::array<double, 3>{2, 3, 4}));
+  EXPECT_EQ(t.boundary, Boundary::periodic);
   std::string mixed = walls;
   mixed.replace(mixed.find("ff ff ff"), 8, "pp pp fm");
   const ParticleSet m = parse_particles(mixed, "m.dump");
@@ -189,7 +206,8 @@ TEST_F(ParticleFiles, MalformedInputNamesFieldAndLine) {
       {"t\n\n2 atoms\n\nAtoms\n\n1 1 1 1 0 0 0\n2 1 1 1 0 0\n", "Atoms", "f:8"},
       {"t\n\n2 atoms\n\nAtoms\n\n1 1 1 1 0 0 0\n", "Atoms", ""},
       {"t\n\n2 atoms\n\nAtoms\n\n1 1 0 1 0 0 0\n2 1 1 1 0 0 0\n", "diameter", "f:7"},
-      {"t\n\n1 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n0 0 0 xy xz yz\n", "box", "f:7"},
+      {"t\n\n1 atoms\n0 1 xlo xhi\n0 1 ylo yhi\n0 1 zlo zhi\n0 0.5 0 xy xz yz\n", "box", "f:7"},
+      {"ITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS xy xz yz pp pp pp\n0 1 0.2\n0 1 0\n0 1 0\n", "BOX BOUNDS", "f:4"},
       {"t\n\n1 atoms\n", "Atoms", ""},
       {"ITEM: NUMBER OF ATOMS\n2\nITEM: BOX BOUNDS pp pp pp\n0 1\n0 1\n0 1\nITEM: ATOMS x y z radius\n0 0 0 1\n", "ATOMS", ""},
       {"ITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS pp pp pp\n0 1\n0 1\n0 1\nITEM: ATOMS x y z q\n0 0 0 1\n", "ATOMS", "f:7"},

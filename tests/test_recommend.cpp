@@ -145,6 +145,29 @@ TEST_F(Recommend, NuAndDFromOptionsOrAClearError) {
   EXPECT_NE(text.out.find("setHGridDistribution(USER);"), std::string::npos);
 }
 
+// What LAMMPS writes for a 2D run (write_data: every z = 0, zlo zhi = 0 1,
+// and the zero tilts of a triclinic box): 2D, nu from the box's area; --d
+// that disagrees with the file is refused.
+TEST_F(Recommend, LammpsTwoDimensionalDataFileGivesNuFromItsArea) {
+  std::ofstream f(path("2d.data"));
+  f << "LAMMPS data file via write_data\n\n4 atoms\n1 atom types\n\n0 10 xlo xhi\n0 10 ylo yhi\n0 1 zlo zhi\n"
+       "0 0 0 xy xz yz\n\nAtoms # sphere\n\n";
+  const double x[4] = {1, 4, 6, 8}, d[4] = {2, 2, 1, 1};
+  for (int i = 0; i < 4; ++i) f << i + 1 << " 1 " << d[i] << " 1 " << x[i] << " " << x[i] << " 0 0 0 0\n";
+  f.close();
+  const auto j = recommend_json(path("2d.data"));
+  EXPECT_EQ(j["d"].get<int>(), 2);
+  EXPECT_EQ(j["n"].get<int>(), 4);
+  const double area = 2 * std::acos(-1.0) * (1 + 0.25);  // two discs of radius 1, two of 0.5
+  EXPECT_NEAR(j["nu"].get<double>(), area / 100, 1e-12);
+  EXPECT_EQ(recommend_json(path("2d.data") + " --d 2")["d"].get<int>(), 2);
+  const Result r = hgrid_run("recommend " + path("2d.data") + " --d 3");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("d: "), std::string::npos) << r.err;
+  EXPECT_EQ(hgrid_run("info " + path("2d.data") + " --d 3").status, 2);
+  EXPECT_EQ(hgrid_run("info " + path("2d.data") + " --d 2").status, 0);
+}
+
 /// A calibration file that exists but does not read (an older format, say):
 /// recommend falls back to the paper's K and says why; --K auto refuses it.
 TEST_F(Recommend, UnreadableCalibrationFallsBackToThePapersKAndSaysWhy) {

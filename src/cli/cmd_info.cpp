@@ -17,6 +17,7 @@ namespace {
 struct InfoOptions {
   std::string file;
   bool json = false, rcp = false;
+  bool d_given = false;  // --d on the command line
   PackingSpec spec;
 };
 
@@ -31,6 +32,9 @@ void run_info(const InfoOptions& o) {
   }
   if (o.file.empty()) throw InputError("file", "give a packing file, or --rcp with a distribution");
   const Packing p = read_packing(o.file, Isolation::child_process);
+  if (o.d_given && o.spec.d != p.d)
+    throw InputError("d", "--d " + std::to_string(o.spec.d) + " disagrees with " + o.file + ", which is " +
+                              std::to_string(p.d) + "D");
   const auto dist = recorded_distribution(p);
   const PackingQuality q = assess_packing(p, dist.get());
   nlohmann::json j;
@@ -81,12 +85,15 @@ void register_info_command(CLI::App& app) {
   sub->add_option("file", o->file, "packing file (.h5 or .csv)");
   sub->add_flag("--json", o->json, "JSON output");
   sub->add_flag("--rcp", o->rcp, "print the random close packing estimate of a distribution");
-  sub->add_option("--d", o->spec.d, "--rcp: dimension")->default_val(3);
+  auto* d = sub->add_option("--d", o->spec.d, "--rcp: dimension; with a file: checked against the file's")->default_val(3);
   sub->add_option("--dist", o->spec.dist, "--rcp: powerlaw|lognormal")->default_val("powerlaw");
   sub->add_option("--alpha", o->spec.alpha, "--rcp: power-law exponent")->default_val(-3.0);
   sub->add_option("--omega", o->spec.omega, "--rcp: size ratio")->default_val(100.0);
   sub->add_option("--sigma", o->spec.sigma, "--rcp: lognormal sigma")->default_val(0.5);
-  sub->callback([o] { run_info(*o); });
+  sub->callback([o, d] {
+    o->d_given = d->count() > 0;
+    run_info(*o);
+  });
 }
 
 }  // namespace hgrid::cli

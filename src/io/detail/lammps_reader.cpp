@@ -35,8 +35,11 @@ void finish(ParticleSet& s, const std::array<double, 3>& lo, const std::array<do
   s.box = side;
   if (!s.has_positions()) return;
   const std::size_t n = s.size();
-  bool flat = lo[2] < 0 && hi[2] > 0;
-  for (std::size_t i = 0; flat && i < n; ++i) flat = s.positions[3 * i + 2] == 0;
+  // LAMMPS keeps z in 2D (every z the same, usually 0, in any zlo zhi: a
+  // 2D run's write_data gives -0.5 0.5 or 0 1): a file whose z are all
+  // equal is 2D (two particles at least: one says nothing).
+  bool flat = n > 1;
+  for (std::size_t i = 1; flat && i < n; ++i) flat = s.positions[3 * i + 2] == s.positions[2];
   for (std::size_t i = 0; i < n; ++i)
     for (int a = 0; a < 3; ++a) s.positions[3 * i + a] -= lo[a];
   if (!flat) return;
@@ -132,8 +135,14 @@ ParticleSet parse_lammps_data(std::string_view text, const std::string& name) {
       const int a = toks[2][0] - 'x';
       lo[a] = finite_number(toks[0], "box", at);
       hi[a] = finite_number(toks[1], "box", at);
-    } else if (toks.size() == 6 && toks[3] == "xy") {
-      throw InputError("box", "a triclinic box (xy xz yz) at " + at.where() + ": hgridlab reads orthogonal boxes");
+    } else if (toks.size() == 6 && toks[3] == "xy" && toks[4] == "xz" && toks[5] == "yz") {
+      // LAMMPS writes the tilts of any triclinic box, zero ones too (a shear
+      // run starts from one): a box without tilt is orthogonal.
+      for (int k = 0; k < 3; ++k)
+        if (finite_number(toks[k], "box", at) != 0)
+          throw InputError("box", "a tilted (triclinic) box, " + std::string(toks[3 + k]) + " = " +
+                                      std::string(toks[k]) + " at " + at.where() +
+                                      ": hgridlab reads orthogonal boxes (all tilts 0)");
     }
   }
   throw InputError("Atoms", "no 'Atoms' section in " + name);
@@ -160,9 +169,13 @@ ParticleSet parse_lammps_dump(std::string_view text, const std::string& name) {
                        kMaxParticles);
       check_memory("NUMBER OF ATOMS", *n, kReadBytesPerParticle, "reading a LAMMPS dump");
     } else if (item.substr(0, 10) == "BOX BOUNDS") {
-      const auto flags = split_ws(item.substr(10));
-      if (std::find(flags.begin(), flags.end(), "xy") != flags.end())
-        throw InputError("BOX BOUNDS", "a triclinic box at " + at.where() + ": hgridlab reads orthogonal boxes");
+      auto flags = split_ws(item.substr(10));
+      // A triclinic dump: "xy xz yz" before the flags, and a tilt after each
+      // pair of bounds; with every tilt 0 the bounds are the box's.
+      const bool tilted = flags.size() == 6 && flags[0] == "xy" && flags[1] == "xz" && flags[2] == "yz";
+      if (tilted) flags.erase(flags.begin(), flags.begin() + 3);
+      else if (std::find(flags.begin(), flags.end(), "xy") != flags.end())
+        throw InputError("BOX BOUNDS", "expected 'xy xz yz' and three boundary flags at " + at.where());
       if (flags.size() != 3)
         throw InputError("BOX BOUNDS", "expected three boundary flags (pp pp pp, ff ff ff, ...) at " + at.where());
       int periodic = 0;
@@ -173,9 +186,14 @@ ParticleSet parse_lammps_dump(std::string_view text, const std::string& name) {
       lo.emplace(), hi.emplace();
       for (int a = 0; a < 3; ++a) {
         const auto b = split_ws(next_content(at, "BOX BOUNDS", "the box bounds"));
-        if (b.size() != 2) throw InputError("BOX BOUNDS", "expected 'lo hi' at " + at.where());
+        if (b.size() != (tilted ? 3u : 2u))
+          throw InputError("BOX BOUNDS", std::string("expected '") + (tilted ? "lo hi tilt" : "lo hi") + "' at " + at.where());
         (*lo)[a] = finite_number(b[0], "BOX BOUNDS", at);
         (*hi)[a] = finite_number(b[1], "BOX BOUNDS", at);
+        if (tilted && finite_number(b[2], "BOX BOUNDS", at) != 0)
+          throw InputError("BOX BOUNDS", "a tilted (triclinic) box, " + std::string(a == 0 ? "xy" : a == 1 ? "xz" : "yz") +
+                                             " = " + std::string(b[2]) + " at " + at.where() +
+                                             ": hgridlab reads orthogonal boxes (all tilts 0)");
       }
     } else if (item.substr(0, 5) == "ATOMS") {
       if (!n || !lo) throw InputError("ATOMS", "'ITEM: NUMBER OF ATOMS' and 'ITEM: BOX BOUNDS' must come first, at " + at.where());
