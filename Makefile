@@ -5,7 +5,7 @@ JOBS  ?= $(shell nproc 2>/dev/null || echo 2)
 SCALE ?= default
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: all build test test-asan test-clang test-sanitize fuzz figures bench deps clean calibrate calibrate-figure
+.PHONY: all build test test-python-install test-asan test-clang test-sanitize fuzz figures bench deps clean calibrate calibrate-figure
 
 all: build
 
@@ -24,6 +24,11 @@ build: deps $(BUILD)/Makefile
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# `pip install .` into a fresh virtual environment (offline, Debian's
+# python3 and packages), then the Python tests against the installed module.
+test-python-install: build
+	bash tests/python_install.sh $(BUILD)/hgrid
 
 # Debug build of the tests with AddressSanitizer and UBSan (without MPI,
 # whose own allocations LeakSanitizer would report: this is also the build

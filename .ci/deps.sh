@@ -8,7 +8,8 @@ set -euo pipefail
 required=("$@"
       build-essential cmake libgsl-dev libhdf5-dev libbenchmark-dev libgtest-dev
       libcli11-dev libtomlplusplus-dev nlohmann-json3-dev gnuplot-nox
-      pybind11-dev python3-dev python3-numpy python3-pytest)
+      pybind11-dev python3-dev python3-numpy python3-pytest
+      python3-setuptools python3-pybind11 python3-build python3-venv)  # pip install . (tests/python_install.sh)
 optional=(jq          # plots/calibration.sh (make calibrate-figure) reads the tool's JSON
           lammps      # bench/peers at run time
           libcgal-dev libembree-dev libbullet-dev  # bench/peers at build time
