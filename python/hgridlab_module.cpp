@@ -127,10 +127,12 @@ py::dict count(const DoubleArray& positions, const DoubleArray& radii, const Dou
   return out;
 }
 
-py::dict read_particle_file(const std::string& path) {
-  ParticleSet s = read_particles(path, Isolation::child_process);
+py::dict read_particle_file(const std::string& path, std::optional<std::int64_t> frame) {
+  ParticleSet s = read_particles(path, Isolation::child_process, frame);
   py::dict out;
   out["format"] = to_string(s.format);
+  out["frame"] = s.frame;
+  out["frames"] = s.frames;
   out["d"] = s.d;
   out["radii"] = py::array_t<double>(static_cast<py::ssize_t>(s.size()), s.radii.data());
   if (s.has_positions()) {
@@ -168,7 +170,7 @@ PYBIND11_MODULE(hgridlab, m) {
         py::arg("sizes") = py::none(), py::arg("search") = "topdown", py::arg("K") = kPaperK, py::arg("threads") = 0,
         "The counted search (the same counts for any number of threads): cell_accesses, narrow_phase_checks, contacts, particles_per_level, accesses_by_level and "
         "checks_by_level (L x L, row-major: level of the particle, level searched), the sizes used, T_over_N.");
-  m.def("read_packing", &read_particle_file, py::arg("path"),
+  m.def("read_packing", &read_particle_file, py::arg("path"), py::arg("frame") = py::none(),
         "A particle file of any supported format: radii, positions (or None), box (or None), boundary (or None), "
         "d, format, nu (or None).");
   m.attr("__version__") = HGRIDLAB_VERSION;

@@ -139,7 +139,16 @@ TEST_F(ParticleFiles, LammpsDataFilesAsExportWritesThemAndByHand) {
 TEST_F(ParticleFiles, LammpsDumpFilesFirstSnapshotAnyColumns) {
   Packing p = sample_packing(40, 4);
   for (bool scaled : {false, true}) {
-    const ParticleSet s = parse_particles(as_dump(p, scaled) + as_dump(sample_packing(40, 5), false), "a.dump");
+    const std::string two = as_dump(p, scaled) + as_dump(sample_packing(40, 5), false);
+    // The last snapshot unless asked; --frame from the first or the end.
+    EXPECT_EQ(parse_particles(two, "a.dump").radii, sample_packing(40, 5).radii);
+    EXPECT_EQ(parse_particles(two, "a.dump", -1).radii, sample_packing(40, 5).radii);
+    EXPECT_EQ(parse_particles(two, "a.dump", -2).radii, p.radii);
+    EXPECT_THROW(parse_particles(two, "a.dump", 2), InputError);
+    EXPECT_THROW(parse_particles(two, "a.dump", -3), InputError);
+    const ParticleSet s = parse_particles(two, "a.dump", 0);
+    EXPECT_EQ(s.frame, 0u);
+    EXPECT_EQ(s.frames, 2u);
     EXPECT_EQ(s.format, ParticleFormat::lammps_dump);
     EXPECT_EQ(s.radii, p.radii);
     EXPECT_EQ(s.boundary, Boundary::periodic);
@@ -161,6 +170,52 @@ TEST_F(ParticleFiles, LammpsDumpFilesFirstSnapshotAnyColumns) {
   const ParticleSet m = parse_particles(mixed, "m.dump");
   EXPECT_TRUE(m.mixed_boundary);
   EXPECT_THROW(to_packing(m, "m.dump"), InputError);
+}
+
+// MercuryDPM's .data files (docs/MERCURYDPM_FILES.md): snapshots one after
+// another, the first often empty; the last unless --frame says; 3D and 2D
+// lines; the domain is the box, origin at its lower corner; no boundary.
+TEST_F(ParticleFiles, MercuryDpmDataFilesAnySnapshot) {
+  const std::string three =
+      "0 0 0 0 0 10 10 10 \n"
+      "2 0.5 0 0 0 10 10 10 \n1 2 3 0 0 0 0.5 0 0 0 0 0 0 0\n4 5 6 0.1 0 0 0.25 0 0 0 0 0 0 1\n"
+      "2 1 0 0 0 10 10 10 \n1.5 2 3 0 0 0 0.5 0 0 0 0 0 0 0\n4 5.5 6 0.1 0 0 0.25 0 0 0 0 0 0 1\n";
+  const ParticleSet s = parse_particles(three, "m.data");
+  EXPECT_EQ(s.format, ParticleFormat::mercury_data);
+  EXPECT_EQ(s.d, 3);
+  EXPECT_EQ(s.frame, 2u);
+  EXPECT_EQ(s.frames, 3u);
+  EXPECT_EQ(s.radii, (std::vector<double>{0.5, 0.25}));
+  EXPECT_EQ(s.positions, (std::vector<double>{1.5, 2, 3, 4, 5.5, 6}));
+  EXPECT_EQ(*s.box, (std::array<double, 3>{10, 10, 10}));
+  EXPECT_FALSE(s.boundary);
+  EXPECT_EQ(parse_particles(three, "m.data", 1).positions, (std::vector<double>{1, 2, 3, 4, 5, 6}));
+  EXPECT_EQ(parse_particles(three, "m.data", -2).positions, (std::vector<double>{1, 2, 3, 4, 5, 6}));
+  for (const std::int64_t bad : {0, 3, -4}) {  // the empty first snapshot, and beyond the file
+    try {
+      parse_particles(three, "m.data", bad);
+      ADD_FAILURE() << "frame " << bad << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.field(), "frame") << e.what();
+    }
+  }
+  // 2D: "N t xmin ymin xmax ymax", particles "x y vx vy r angle omega info".
+  const ParticleSet t = parse_particles("2 0 -1 -1 9 9\n0 0 0 0 1 0 0 0\n4 4 0 0 0.5 0 0 0\n", "m2.data");
+  EXPECT_EQ(t.d, 2);
+  EXPECT_EQ(t.positions, (std::vector<double>{1, 1, 5, 5}));
+  EXPECT_EQ(t.radii, (std::vector<double>{1, 0.5}));
+  EXPECT_EQ((*t.box)[0], 10);
+  EXPECT_EQ((*t.box)[1], 10);
+  EXPECT_NEAR(t.packing_fraction(), std::acos(-1.0) * 1.25 / 100, 1e-15);
+  // One snapshot in the other formats: --frame 0 or -1 only.
+  EXPECT_NO_THROW(parse_particles("x y z r\n1 1 1 0.5\n", "t.txt", -1));
+  EXPECT_THROW(parse_particles("x y z r\n1 1 1 0.5\n", "t.txt", 1), InputError);
+  // From a file, through the command line.
+  std::ofstream(path("run.data")) << three;
+  const Result r = hgrid_run("recommend " + path("run.data") + " --frame 1 --json");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\"n\": 2"), std::string::npos) << r.out;
+  EXPECT_EQ(hgrid_run("count " + path("run.data") + " --cells optimal --frame 0").status, 2);
 }
 
 TEST_F(ParticleFiles, SameParticlesFromEveryFormat) {
@@ -214,6 +269,13 @@ TEST_F(ParticleFiles, MalformedInputNamesFieldAndLine) {
       {"ITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS pp pp\n0 1\n0 1\n", "BOX BOUNDS", "f:3"},
       {"ITEM: ATOMS x y z radius\n0 0 0 1\n", "ATOMS", "f:1"},
       {"ITEM: NUMBER OF ATOMS\n-1\n", "NUMBER OF ATOMS", "f:2"},
+      // MercuryDPM .data: a snapshot with fewer particles than its header
+      // declares, one cut short, a 2D header in a 3D file, an inverted domain.
+      {"2 0 0 0 0 1 1 1\n0.5 0.5 0.5 0 0 0 0.1 0 0 0 0 0 0 0\n1 0 0 0 0 1 1 1\n", "particles", "f:3"},
+      {"1 0 0 0 0 1 1 1 \n", "particles", "line 1"},
+      {"0 0 0 0 0 1 1 1\n0 1 0 0 1 1\n", "header", "f:2"},
+      {"1 0 0 0 2 1 1 1\n0.5 0.5 0.5 0 0 0 0.1 0 0 0 0 0 0 0\n", "header", "f:1"},
+      {"1 0 0 0 1 1\n0.5 0.5 0 0 -1 0 0 0\n", "radius", "f:2"},
       {"bin\0ary", "file", ""},
   };
   for (const Bad& b : cases) {

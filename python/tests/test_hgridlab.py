@@ -144,3 +144,16 @@ def test_read_packing_every_kind(tmp_path):
     bad.write_text("x y r\n1 2 0.5\n1 2 zz\n")
     with pytest.raises(ValueError, match="bad.txt:3"):
         hgridlab.read_packing(str(bad))
+
+
+def test_read_packing_takes_the_last_snapshot_or_the_frame_asked(tmp_path):
+    """A MercuryDPM .data file of two 2D snapshots (header 'N t xmin ymin xmax ymax')."""
+    path = tmp_path / "run.data"
+    path.write_text("1 0 0 0 10 10\n1 1 0 0 0.5 0 0 0\n2 1 0 0 10 10\n2 2 0 0 1 0 0 0\n5 5 0 0 0.5 0 0 0\n")
+    last = hgridlab.read_packing(str(path))
+    assert last["format"] == "mercury_data" and last["frame"] == 1 and last["frames"] == 2
+    assert last["d"] == 2 and list(last["radii"]) == [1.0, 0.5]
+    first = hgridlab.read_packing(str(path), frame=0)
+    assert list(first["radii"]) == [0.5] and first["box"] == [10.0, 10.0]
+    with pytest.raises(ValueError, match="frame"):
+        hgridlab.read_packing(str(path), frame=2)

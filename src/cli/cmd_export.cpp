@@ -23,6 +23,7 @@ namespace {
 
 struct ExportOptions {
   std::string file, lammps, cache_dir = "results/packings", boundary = "periodic", placement = "excluded";
+  std::optional<std::int64_t> frame;
   std::string collections, xyz, vtk, sizes, K;
   int classes = 4;
   double smallest = 0;  // 0: 2 r_min
@@ -42,7 +43,7 @@ void run_export(ExportOptions o) {
   Packing p;
   if (!o.file.empty()) {
     if (o.spec.n != 0) throw InputError("n", "give either FILE or generation options (--n ...), not both");
-    p = read_packing(o.file, Isolation::child_process);
+    p = read_packing(o.file, Isolation::child_process, kIsolatedReadBaseSeconds, o.frame);
   } else {
     if (o.spec.n == 0) throw InputError("n", "give FILE or --n N (and the other generation options)");
     o.spec.boundary = parse_boundary(o.boundary);
@@ -83,6 +84,7 @@ void register_export_commands(CLI::App& app) {
   auto o = std::make_shared<ExportOptions>();
   auto* sub = app.add_subcommand("export", "export a packing for another code (LAMMPS) or a viewer (OVITO, ParaView)");
   sub->add_option("FILE", o->file, "packing file (any format with centres and a box); or give generation options");
+  add_frame_option(sub, o->frame);
   sub->add_option("--lammps", o->lammps, "output directory: data.lmp, in.multi.lmp, in.bin.lmp");
   sub->add_option("--xyz", o->xyz, "extended XYZ file (OVITO): radius, level of insertion, cell per particle");
   sub->add_option("--vtk", o->vtk, "legacy VTK file (ParaView): radius, level of insertion, cell per particle");

@@ -18,6 +18,7 @@ struct InfoOptions {
   std::string file;
   bool json = false, rcp = false;
   bool d_given = false;  // --d on the command line
+  std::optional<std::int64_t> frame;
   PackingSpec spec;
 };
 
@@ -31,7 +32,7 @@ void run_info(const InfoOptions& o) {
     return;
   }
   if (o.file.empty()) throw InputError("file", "give a packing file, or --rcp with a distribution");
-  const Packing p = read_packing(o.file, Isolation::child_process);
+  const Packing p = read_packing(o.file, Isolation::child_process, kIsolatedReadBaseSeconds, o.frame);
   if (o.d_given && o.spec.d != p.d)
     throw InputError("d", "--d " + std::to_string(o.spec.d) + " disagrees with " + o.file + ", which is " +
                               std::to_string(p.d) + "D");
@@ -82,7 +83,8 @@ void run_info(const InfoOptions& o) {
 void register_info_command(CLI::App& app) {
   auto o = std::make_shared<InfoOptions>();
   auto* sub = app.add_subcommand("info", "quality of a packing file, or --rcp: random close packing estimate");
-  sub->add_option("file", o->file, "packing file (.h5 or .csv)");
+  sub->add_option("file", o->file, "packing file (HDF5, CSV/text, LAMMPS data or dump, MercuryDPM .data)");
+  add_frame_option(sub, o->frame);
   sub->add_flag("--json", o->json, "JSON output");
   sub->add_flag("--rcp", o->rcp, "print the random close packing estimate of a distribution");
   auto* d = sub->add_option("--d", o->spec.d, "--rcp: dimension; with a file: checked against the file's")->default_val(3);

@@ -21,6 +21,7 @@ namespace {
 
 struct RecommendOptions {
   std::string file, K, search = "topdown", cost = "auto";
+  std::optional<std::int64_t> frame;
   std::optional<double> nu;
   std::optional<int> d;
   double skin = 0;
@@ -54,8 +55,10 @@ std::string k_text(const KChoice& k) {
 
 void print_text(const RecommendOptions& o, const ParticleSet& s, const FileInputs& in, const KChoice& k,
                 const Recommendation& r, Search search) {
-  std::printf("%s: %zu particles (%s, %dD), r_min = %g, r_max = %g (omega = %g)\n", o.file.c_str(), s.size(),
-              to_string(s.format), in.d, r.r_min, r.r_max, r.r_max / r.r_min);
+  const std::string snapshot =
+      s.frames > 1 ? ", snapshot " + std::to_string(s.frame) + " of " + std::to_string(s.frames) : std::string();
+  std::printf("%s: %zu particles (%s, %dD%s), r_min = %g, r_max = %g (omega = %g)\n", o.file.c_str(), s.size(),
+              to_string(s.format), in.d, snapshot.c_str(), r.r_min, r.r_max, r.r_max / r.r_min);
   if (in.nu_from_box)
     std::printf("nu = %g from the file's box (boundary %s)\n", in.nu, boundary_description(s).c_str());
   else
@@ -102,7 +105,7 @@ void print_json(const RecommendOptions& o, const ParticleSet& s, const FileInput
 void run_recommend(const RecommendOptions& o) {
   if (!(std::isfinite(o.skin) && o.skin >= 0)) throw InputError("skin", "must be a finite number >= 0");
   const Search search = parse_search(o.search);
-  const ParticleSet s = read_particles(o.file, Isolation::child_process);
+  const ParticleSet s = read_particles(o.file, Isolation::child_process, o.frame);
   const FileInputs in = file_inputs(s, o.file, o.d, o.nu);
   const KChoice k = choose_K(o.K);
   // The time model: asked for, or by default when the calibration that gave
@@ -144,7 +147,10 @@ FileInputs file_inputs(const ParticleSet& s, const std::string& file, std::optio
 void register_recommend_commands(CLI::App& app) {
   auto o = std::make_shared<RecommendOptions>();
   auto* sub = app.add_subcommand("recommend", "cell sizes for your own particles, and settings for LAMMPS and MercuryDPM");
-  sub->add_option("FILE", o->file, "particle file (HDF5, CSV/text, LAMMPS data or dump; docs/PARTICLE_FILES.md)")->required();
+  sub->add_option("FILE", o->file,
+                  "particle file (HDF5, CSV/text, LAMMPS data or dump, MercuryDPM .data; docs/PARTICLE_FILES.md)")
+      ->required();
+  add_frame_option(sub, o->frame);
   sub->add_option("--nu", o->nu, "packing fraction (default: from the file's box; needed when it has none)");
   sub->add_option("--d", o->d, "dimension, 2 or 3 (default: from the file)");
   sub->add_option("--K", o->K, std::string(kKHelp) + " (default: the stored calibration if any, else 0.2)");

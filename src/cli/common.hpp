@@ -67,6 +67,10 @@ FileInputs file_inputs(const ParticleSet& s, const std::string& file, std::optio
 /// The --threads option of a command that searches (default 0: all cores,
 /// OMP_NUM_THREADS when set); checked by hgrid::check_threads (grid/threads.hpp).
 void add_threads_option(CLI::App* sub, int& threads);
+/// The --frame option of a command that reads a particle file: the snapshot
+/// of a file that holds several (LAMMPS dump, MercuryDPM .data), from the
+/// first (0-based) or from the end when negative; default: the last.
+void add_frame_option(CLI::App* sub, std::optional<std::int64_t>& frame);
 
 /// The --decompose forms of pairs and count (cmd_decompose.cpp): the search
 /// split over the ranks of an MPI run; rank 0 prints.

@@ -22,6 +22,12 @@ void add_threads_option(CLI::App* sub, int& threads) {
       ->default_val(0);
 }
 
+void add_frame_option(CLI::App* sub, std::optional<std::int64_t>& frame) {
+  sub->add_option("--frame", frame,
+                  "snapshot of a file that holds several (LAMMPS dump, MercuryDPM .data): K from the first "
+                  "(0, 1, ...) or from the end (-1, -2, ...); default: the last");
+}
+
 std::vector<double> parse_list(const std::string& text, const std::string& field) {
   std::vector<double> out;
   if (text.empty()) throw InputError(field, "empty list");

@@ -18,6 +18,7 @@
 #include "io/h5.hpp"
 #include "grid/error.hpp"
 #include "io/packing_file.hpp"
+#include "io/detail/mercury_reader.hpp"
 #include "io/particle_file.hpp"
 #include "io/provenance.hpp"
 
@@ -283,8 +284,10 @@ Packing read_packing_part(const std::string& path, std::uint64_t part, std::uint
   return p;
 }
 
-Packing read_packing(const std::string& path, Isolation isolation, double base_seconds) {
-  if (!hdf5_file(path)) return to_packing(read_particles(path, isolation), path);
+Packing read_packing(const std::string& path, Isolation isolation, double base_seconds,
+                     std::optional<std::int64_t> frame) {
+  if (!hdf5_file(path)) return to_packing(read_particles(path, isolation, frame), path);
+  detail::resolve_frame(frame, 1, path);  // an HDF5 packing is one snapshot
   if (!std::filesystem::exists(path)) throw InputError("file", "'" + path + "' does not exist");
   Packing p = read_hdf5_packing(path, isolation, base_seconds);  // with the file's attributes
   validate(p);

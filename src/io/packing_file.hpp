@@ -2,6 +2,7 @@
 #pragma once
 #include <cstdint>
 #include <istream>
+#include <optional>
 #include <string>
 
 #include "packing/packing.hpp"
@@ -24,8 +25,9 @@ inline constexpr double kIsolatedReadBaseSeconds = 5;
 /// CSV or text with `# box`, LAMMPS data and dump files; io/particle_file.hpp),
 /// validates it (see validate()) and returns it. Throws InputError naming the
 /// field that is wrong.
+/// `frame`: the snapshot of a file that holds several (read_particles).
 Packing read_packing(const std::string& path, Isolation isolation = Isolation::none,
-                     double base_seconds = kIsolatedReadBaseSeconds);
+                     double base_seconds = kIsolatedReadBaseSeconds, std::optional<std::int64_t> frame = std::nullopt);
 
 /// Part `part` of `parts` (0-based) of a packing file: its rows [first,
 /// first + count) with first = N part / parts, validated like read_packing

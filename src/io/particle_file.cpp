@@ -7,6 +7,7 @@
 
 #include "grid/error.hpp"
 #include "io/detail/lammps_reader.hpp"
+#include "io/detail/mercury_reader.hpp"
 #include "io/detail/table_reader.hpp"
 #include "io/detail/text_lines.hpp"
 
@@ -48,6 +49,7 @@ const char* to_string(ParticleFormat f) {
     case ParticleFormat::table: return "table";
     case ParticleFormat::lammps_data: return "lammps_data";
     case ParticleFormat::lammps_dump: return "lammps_dump";
+    case ParticleFormat::mercury_data: return "mercury_data";
   }
   return "?";
 }
@@ -61,29 +63,34 @@ double ParticleSet::packing_fraction() const {
   return vol / box_vol;
 }
 
-ParticleSet parse_particles(std::string_view text, const std::string& name) {
+ParticleSet parse_particles(std::string_view text, const std::string& name, std::optional<std::int64_t> frame) {
   if (text.substr(0, kBinaryProbeBytes).find('\0') != std::string_view::npos)
     throw InputError("file", name + " is binary and not HDF5; expected " + kParticleFormats);
   detail::Lines at(text, name);
   std::string_view line;
   while (at.next(line) && detail::blank(line)) {
   }
-  if (detail::trim(line).substr(0, 5) == "ITEM:") return detail::parse_lammps_dump(text, name);
+  if (detail::trim(line).substr(0, 5) == "ITEM:") return detail::parse_lammps_dump(text, name, frame);
+  if (detail::looks_like_mercury_data(text)) return detail::parse_mercury_data(text, name, frame);
+  detail::resolve_frame(frame, 1, name);  // one snapshot
   if (detail::looks_like_lammps_data(text)) return detail::parse_lammps_data(text, name);
   return detail::parse_table(text, name);
 }
 
-ParticleSet read_particles(const std::string& path, Isolation isolation) {
+ParticleSet read_particles(const std::string& path, Isolation isolation, std::optional<std::int64_t> frame) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw InputError("file", "'" + path + "' does not exist");
   if (std::filesystem::is_directory(path, ec)) throw InputError("file", "'" + path + "' is a directory");
-  if (hdf5_file(path)) return from_packing(read_hdf5_packing(path, isolation));
+  if (hdf5_file(path)) {
+    detail::resolve_frame(frame, 1, path);  // one snapshot
+    return from_packing(read_hdf5_packing(path, isolation));
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("file", "cannot open '" + path + "'");
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw InputError("file", "cannot read '" + path + "'");
-  return parse_particles(text.str(), path);
+  return parse_particles(text.str(), path, frame);
 }
 
 Packing to_packing(ParticleSet s, const std::string& name) {

@@ -6,6 +6,7 @@
 // needs the centres and the box too.
 #pragma once
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -16,13 +17,13 @@
 
 namespace hgrid {
 
-enum class ParticleFormat { hdf5, table, lammps_data, lammps_dump };
+enum class ParticleFormat { hdf5, table, lammps_data, lammps_dump, mercury_data };
 const char* to_string(ParticleFormat f);
 
 /// What every reader says when a file matches no format.
 inline constexpr const char* kParticleFormats =
     "HDF5 packing (.h5), CSV or whitespace text with columns x y [z] and r|radius or d|diameter, a LAMMPS data "
-    "file (Atoms # sphere) or a LAMMPS dump (ITEM: ATOMS ... x y z radius|diameter)";
+    "file (Atoms # sphere), a LAMMPS dump (ITEM: ATOMS ... x y z radius|diameter) or a MercuryDPM .data file";
 
 struct ParticleSet {
   ParticleFormat format = ParticleFormat::table;
@@ -32,6 +33,7 @@ struct ParticleSet {
   std::optional<std::array<double, 3>> box;  // side lengths (first d used), when the file has a box
   std::optional<Boundary> boundary;   // when the file says (`# boundary`, dump flags, HDF5)
   bool mixed_boundary = false;        // a LAMMPS dump with periodic and non-periodic axes
+  std::size_t frame = 0, frames = 1;  // the snapshot read, of how many the file holds (dumps, MercuryDPM .data)
   std::size_t size() const { return radii.size(); }
   bool has_positions() const { return !positions.empty(); }
   /// Total particle volume over the box's (needs d and a box).
@@ -41,14 +43,19 @@ struct ParticleSet {
 /// Reads `path` in whichever supported format its content shows. Throws
 /// InputError naming the field (and file:line for text) for malformed input,
 /// and one line listing kParticleFormats for a file that matches none.
-ParticleSet read_particles(const std::string& path, Isolation isolation = Isolation::none);
+/// `frame`: the snapshot of a file that holds several (LAMMPS dumps,
+/// MercuryDPM .data files): from the first (0-based), or from the end when
+/// negative; nothing: the last. Files of one snapshot take 0 or -1.
+ParticleSet read_particles(const std::string& path, Isolation isolation = Isolation::none,
+                           std::optional<std::int64_t> frame = std::nullopt);
 
 /// True for an HDF5 file: by its ending (.h5, .hdf5, .hdf) or its signature.
 bool hdf5_file(const std::string& path);
 
 /// The text formats (table, LAMMPS data, LAMMPS dump) from memory; `name`
 /// names the source in messages.
-ParticleSet parse_particles(std::string_view text, const std::string& name);
+ParticleSet parse_particles(std::string_view text, const std::string& name,
+                            std::optional<std::int64_t> frame = std::nullopt);
 
 /// A Packing for the grids: needs d, centres and a box (InputError "box" or
 /// "positions" naming `name` otherwise). A file without a boundary gives a

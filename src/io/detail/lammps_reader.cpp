@@ -5,6 +5,7 @@
 
 #include "grid/error.hpp"
 #include "io/detail/table_reader.hpp"
+#include "io/detail/mercury_reader.hpp"
 #include "io/detail/text_lines.hpp"
 
 namespace hgrid::detail {
@@ -148,7 +149,18 @@ ParticleSet parse_lammps_data(std::string_view text, const std::string& name) {
   throw InputError("Atoms", "no 'Atoms' section in " + name);
 }
 
-ParticleSet parse_lammps_dump(std::string_view text, const std::string& name) {
+ParticleSet parse_lammps_dump(std::string_view text, const std::string& name, std::optional<std::int64_t> frame) {
+  // The snapshots: one ATOMS item each.
+  std::size_t snapshots = 0;
+  {
+    Lines count(text, name);
+    std::string_view l;
+    while (count.next(l))
+      if (trim(l).substr(0, 5) == "ITEM:" && trim(trim(l).substr(5)).substr(0, 5) == "ATOMS") ++snapshots;
+  }
+  // (none: the items below say what is missing)
+  const std::size_t target = snapshots > 0 ? resolve_frame(frame, snapshots, name) : 0;
+  std::size_t index = 0;  // of the next ATOMS item
   Lines at(text, name);
   ParticleSet s = empty_set(ParticleFormat::lammps_dump);
   std::optional<std::size_t> n;
@@ -179,6 +191,7 @@ ParticleSet parse_lammps_dump(std::string_view text, const std::string& name) {
       if (flags.size() != 3)
         throw InputError("BOX BOUNDS", "expected three boundary flags (pp pp pp, ff ff ff, ...) at " + at.where());
       int periodic = 0;
+      s.mixed_boundary = false;
       for (auto f : flags) periodic += f == "pp";
       if (periodic == 3) s.boundary = Boundary::periodic;
       else if (periodic == 0) s.boundary = Boundary::walls;
@@ -197,6 +210,13 @@ ParticleSet parse_lammps_dump(std::string_view text, const std::string& name) {
       }
     } else if (item.substr(0, 5) == "ATOMS") {
       if (!n || !lo) throw InputError("ATOMS", "'ITEM: NUMBER OF ATOMS' and 'ITEM: BOX BOUNDS' must come first, at " + at.where());
+      if (index++ != target) {  // another snapshot: its rows are passed over
+        for (std::size_t i = 0; i < *n; ++i)
+          next_content(at, "ATOMS", std::to_string(*n) + " atoms are read (" + std::to_string(i) + " found)");
+        continue;
+      }
+      s.frame = target;
+      s.frames = snapshots;
       const auto names_sv = split_ws(item.substr(5));
       const std::vector<std::string> names(names_sv.begin(), names_sv.end());
       const Columns c = map_columns(names);
@@ -217,7 +237,9 @@ ParticleSet parse_lammps_dump(std::string_view text, const std::string& name) {
           s.positions.push_back(c.scaled[a] ? (*lo)[a] + v * ((*hi)[a] - (*lo)[a]) : v);
         }
       }
-      if (s.radii.empty()) throw InputError("ATOMS", "the first snapshot of " + name + " has no atoms");
+      if (s.radii.empty())
+        throw InputError("ATOMS", "snapshot " + std::to_string(target) + " of " + name +
+                                      " has no atoms; choose another with --frame");
       if (dims == 2) {  // a 2D dump: x and y only
         s.d = 2;
         for (std::size_t i = 0; i < s.size(); ++i)
@@ -227,7 +249,7 @@ ParticleSet parse_lammps_dump(std::string_view text, const std::string& name) {
         return s;
       }
       finish(s, *lo, *hi, name);
-      return s;  // the first snapshot only
+      return s;  // the chosen snapshot only
     } else {
       skipping = true;  // TIMESTEP, UNITS, TIME, ...: their values are not needed
     }
