@@ -4,12 +4,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "grid/error.hpp"
 #include "io/lammps_export.hpp"
+#include "io/packing_file.hpp"
 #include "bench/lammps_run.hpp"
 #include "support.hpp"
 
@@ -128,6 +131,69 @@ void check_with_lammps(double nu, std::uint64_t seed) {
   }
   fs::remove_all(dir);
 }
+
+/// What LAMMPS itself writes, read back: after the timed builds the script
+/// turns the box triclinic (tilts 0, as a shear run starts) and writes a data
+/// file and dumps with x y z, scaled xs ys zs and unwrapped xu yu zu, radius
+/// and diameter columns (2D: z = 0 in a box around it). Each reads as a D-
+/// dimensional packing of the same radii and centres, and its pairs are those
+/// LAMMPS's own list counted as touching.
+template <int D>
+void read_what_lammps_writes(std::uint64_t seed) {
+  const auto lmp = find_lammps();
+  if (!lmp) GTEST_SKIP() << "lmp not on PATH (apt-get install lammps)";
+  constexpr double kPositionTol = 1e-9;  // relative to the box: LAMMPS prints 16 digits, scaled columns round
+  const auto sc0 = random_scene<D>(300, 0.4, -3, 4, Boundary::periodic, seed);
+  const Packing p = packing_from(sc0, Boundary::periodic);
+  const fs::path dir = fs::temp_directory_path() / ("hgridlab_lmpw_" + std::to_string(::getpid()) + "_" + std::to_string(D));
+  LammpsScript sc;
+  sc.builds = 1;
+  export_lammps(dir.string(), p, sc);
+  std::ifstream bin(dir / "in.bin.lmp");
+  std::stringstream script;
+  script << bin.rdbuf()
+         << "change_box all triclinic\nwrite_data written.data\n"
+            "write_dump all custom x.dump id x y z radius modify sort id format float %.17g\n"
+            "write_dump all custom s.dump id xs ys zs diameter modify sort id format float %.17g\n"
+            "write_dump all custom u.dump id xu yu zu radius modify sort id format float %.17g\n";
+  std::ofstream(dir / "in.write.lmp") << script.str();
+  const LammpsResult r = run_lammps(*lmp, dir.string(), "in.write.lmp");
+  ASSERT_TRUE(r.ok) << r.error;
+  const std::uint64_t expected = brute_count<D, Boundary::periodic>(sc0);
+  EXPECT_EQ(r.pairs, expected);
+  for (const char* f : {"written.data", "x.dump", "s.dump", "u.dump"}) {
+    SCOPED_TRACE(std::string(f) + " seed " + std::to_string(seed));
+    const Packing q = read_packing((dir / f).string());
+    ASSERT_EQ(q.d, D);
+    ASSERT_EQ(q.size(), p.size());
+    for (int a = 0; a < D; ++a) EXPECT_NEAR(q.box[a], p.box[a], kPositionTol * p.box[a]);
+    std::vector<double> rp = p.radii, rq = q.radii;
+    std::sort(rp.begin(), rp.end());
+    std::sort(rq.begin(), rq.end());
+    for (std::size_t i = 0; i < rp.size(); ++i) EXPECT_NEAR(rq[i], rp[i], 1e-12 * rp[i]);
+    if (std::string(f) != "written.data") {  // dumps sorted by id: the same order
+      for (std::size_t i = 0; i < p.positions.size(); ++i) {
+        const double A = p.box[i % D];
+        double dx = std::fmod(q.positions[i] - p.positions[i], A);
+        dx = std::min(std::abs(dx), A - std::abs(dx));
+        EXPECT_LT(dx, kPositionTol * A) << "coordinate " << i;
+      }
+    }
+    Scene<D> back;
+    for (int a = 0; a < D; ++a) back.box[a] = q.box[a];
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      Sphere<D> sp;
+      for (int a = 0; a < D; ++a) sp.x[a] = q.positions[i * D + a];
+      sp.r = q.radii[i];
+      back.spheres.push_back(sp);
+    }
+    EXPECT_EQ((brute_count<D, Boundary::periodic>(back)), r.pairs);
+  }
+  fs::remove_all(dir);
+}
+
+TEST(LammpsRun, FilesLammpsWritesAreRead3D) { read_what_lammps_writes<3>(21); }
+TEST(LammpsRun, FilesLammpsWritesAreRead2D) { read_what_lammps_writes<2>(22); }
 
 TEST(LammpsRun, PeriodicPairsEqualBruteForce3D) { check_with_lammps<3, Boundary::periodic>(0.4, 5); }
 TEST(LammpsRun, WallPairsEqualBruteForce3D) { check_with_lammps<3, Boundary::walls>(0.4, 6); }
