@@ -166,6 +166,10 @@ TEST_F(Recommend, LammpsTwoDimensionalDataFileGivesNuFromItsArea) {
   EXPECT_NE(r.err.find("d: "), std::string::npos) << r.err;
   EXPECT_EQ(hgrid_run("info " + path("2d.data") + " --d 3").status, 2);
   EXPECT_EQ(hgrid_run("info " + path("2d.data") + " --d 2").status, 0);
+  for (const char* cmd : {"count", "pairs"}) {
+    EXPECT_EQ(hgrid_run(std::string(cmd) + " " + path("2d.data") + " --cells optimal --d 3").status, 2) << cmd;
+    EXPECT_EQ(hgrid_run(std::string(cmd) + " " + path("2d.data") + " --cells optimal --d 2").status, 0) << cmd;
+  }
 }
 
 /// A calibration file that exists but does not read (an older format, say):

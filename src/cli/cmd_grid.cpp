@@ -33,6 +33,7 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 struct GridOptions {
   std::string file;
   std::optional<std::int64_t> frame;
+  std::optional<int> d;  // the file's dimension, checked when given
   std::string sizes;
   std::string search = "topdown";
   std::string cost = "count";
@@ -46,6 +47,7 @@ struct GridOptions {
 void add_grid_options(CLI::App* sub, GridOptions& o) {
   sub->add_option("FILE", o.file, "packing file (HDF5, CSV/text, LAMMPS data or dump, MercuryDPM .data)")->required();
   add_frame_option(sub, o.frame);
+  sub->add_option("--d", o.d, "the file's dimension, 2 or 3: refused if the file's differs (default: the file's)");
   auto* sizes = sub->add_option("--sizes", o.sizes, "cell sizes s1,s2,...,sL (increasing, same unit as the radii)");
   auto* cells = sub->add_option("--cells", o.cells,
                                 "choose the sizes with the cost model: linear|exponential|constant|optimal");
@@ -100,6 +102,7 @@ void run_pairs(const GridOptions& o, bool brute) {
     return run_decomposed_pairs(o.file, decomposed_params(o));
   }
   const Packing p = read_packing(o.file, Isolation::child_process, kIsolatedReadBaseSeconds, o.frame);
+  check_file_dimension(p.d, o.d, o.file);
   const GridParams g = brute ? GridParams{} : resolve(o, p, 0.2);
   dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
     constexpr int D = decltype(dim)::value;
@@ -269,6 +272,7 @@ void run_count(const GridOptions& o, const std::string& K_text, int repeat, bool
     return run_decomposed_count(o.file, decomposed_params(o), K, as_json);
   }
   const Packing p = read_packing(o.file, Isolation::child_process, kIsolatedReadBaseSeconds, o.frame);
+  check_file_dimension(p.d, o.d, o.file);
   const GridParams g = resolve(o, p, K);
   nlohmann::json j = dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
     constexpr int D = decltype(dim)::value;

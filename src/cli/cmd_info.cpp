@@ -33,9 +33,7 @@ void run_info(const InfoOptions& o) {
   }
   if (o.file.empty()) throw InputError("file", "give a packing file, or --rcp with a distribution");
   const Packing p = read_packing(o.file, Isolation::child_process, kIsolatedReadBaseSeconds, o.frame);
-  if (o.d_given && o.spec.d != p.d)
-    throw InputError("d", "--d " + std::to_string(o.spec.d) + " disagrees with " + o.file + ", which is " +
-                              std::to_string(p.d) + "D");
+  if (o.d_given) check_file_dimension(p.d, o.spec.d, o.file);
   const auto dist = recorded_distribution(p);
   const PackingQuality q = assess_packing(p, dist.get());
   nlohmann::json j;

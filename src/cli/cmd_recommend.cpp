@@ -123,9 +123,7 @@ FileInputs file_inputs(const ParticleSet& s, const std::string& file, std::optio
   FileInputs in;
   if (d) {
     if (*d != 2 && *d != 3) throw InputError("d", "must be 2 or 3 (got " + std::to_string(*d) + ")");
-    if ((s.d == 2 || s.d == 3) && s.d != *d)
-      throw InputError("d", "--d " + std::to_string(*d) + " disagrees with " + file + ", which is " +
-                                std::to_string(s.d) + "D (a LAMMPS file is 2D when all its z are equal)");
+    if (s.d == 2 || s.d == 3) check_file_dimension(s.d, d, file);
     in.d = *d;
   } else if (s.d == 2 || s.d == 3) {
     in.d = s.d;

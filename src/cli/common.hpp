@@ -71,6 +71,9 @@ void add_threads_option(CLI::App* sub, int& threads);
 /// of a file that holds several (LAMMPS dump, MercuryDPM .data), from the
 /// first (0-based) or from the end when negative; default: the last.
 void add_frame_option(CLI::App* sub, std::optional<std::int64_t>& frame);
+/// --d with a particle file: the dimension the file must have; InputError
+/// naming d when the file's (2D when all its z are equal) differs.
+void check_file_dimension(int file_d, std::optional<int> d, const std::string& file);
 
 /// The --decompose forms of pairs and count (cmd_decompose.cpp): the search
 /// split over the ranks of an MPI run; rank 0 prints.

@@ -28,6 +28,14 @@ void add_frame_option(CLI::App* sub, std::optional<std::int64_t>& frame) {
                   "(0, 1, ...) or from the end (-1, -2, ...); default: the last");
 }
 
+void check_file_dimension(int file_d, std::optional<int> d, const std::string& file) {
+  if (!d) return;
+  if (*d != 2 && *d != 3) throw InputError("d", "must be 2 or 3 (got " + std::to_string(*d) + ")");
+  if (file_d != *d)
+    throw InputError("d", "--d " + std::to_string(*d) + " disagrees with " + file + ", which is " +
+                              std::to_string(file_d) + "D (a LAMMPS file is 2D when all its z are equal)");
+}
+
 std::vector<double> parse_list(const std::string& text, const std::string& field) {
   std::vector<double> out;
   if (text.empty()) throw InputError(field, "empty list");
