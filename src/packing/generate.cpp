@@ -407,8 +407,8 @@ Packing generate_packing(const PackingSpec& s, const Packing* from, const Packin
     if (s.placement == Placement::random) place_random(s, rng, p);
     else place_excluded(s, rcp, rng, p);
   }
+  std::optional<StopState> stop;  // stop = stationary: the observable's state
   if (s.equilibrate) {
-    std::optional<StopState> stop;
     detail::EquilibrationObserver observe;
     if (s.stop == EquilibrationStop::stationary) {
       stop.emplace();
@@ -440,14 +440,10 @@ Packing generate_packing(const PackingSpec& s, const Packing* from, const Packin
       };
     detail::equilibrate(s.d, s.boundary, p.box, p.radii, p.positions, static_cast<std::uint64_t>(s.sweeps), s.threads,
                         rng, progress, e, save, s.checkpoint_seconds, observe);
-    if (s.boundary == Boundary::periodic)
-      for (std::size_t i = 0; i < p.positions.size(); ++i) p.positions[i] = detail::wrap(p.positions[i], p.box[i % s.d]);
-    describe(p, s, *dist, rcp, e, rng, stop ? &*stop : nullptr, true);
-    return p;
   }
   if (s.boundary == Boundary::periodic)
     for (std::size_t i = 0; i < p.positions.size(); ++i) p.positions[i] = detail::wrap(p.positions[i], p.box[i % s.d]);
-  describe(p, s, *dist, rcp, e, rng);
+  describe(p, s, *dist, rcp, e, rng, stop ? &*stop : nullptr, true);
   return p;
 }
 
