@@ -18,7 +18,7 @@
 #include "io/h5.hpp"
 #include "grid/error.hpp"
 #include "io/packing_file.hpp"
-#include "io/detail/mercury_reader.hpp"
+#include "io/detail/text_lines.hpp"
 #include "io/particle_file.hpp"
 #include "io/provenance.hpp"
 

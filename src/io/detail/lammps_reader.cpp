@@ -5,7 +5,6 @@
 
 #include "grid/error.hpp"
 #include "io/detail/table_reader.hpp"
-#include "io/detail/mercury_reader.hpp"
 #include "io/detail/text_lines.hpp"
 
 namespace hgrid::detail {

@@ -47,16 +47,6 @@ bool looks_like_mercury_data(std::string_view text) {
   return true;  // one header, no particles
 }
 
-std::size_t resolve_frame(std::optional<std::int64_t> frame, std::size_t count, const std::string& name) {
-  const auto c = static_cast<std::int64_t>(count);
-  const std::int64_t k = frame.value_or(-1);
-  if (count == 0 || k >= c || k < -c)
-    throw InputError("frame", "must be in [" + std::to_string(-c) + ", " + std::to_string(c - 1) + "]: " + name +
-                                  " holds " + std::to_string(count) + " snapshot" + (count == 1 ? "" : "s") +
-                                  " (got " + std::to_string(k) + ")");
-  return static_cast<std::size_t>(k < 0 ? c + k : k);
-}
-
 ParticleSet parse_mercury_data(std::string_view text, const std::string& name, std::optional<std::int64_t> frame) {
   // First pass: every snapshot's header and the shape of its lines.
   std::vector<Snapshot> snaps;

@@ -23,8 +23,4 @@ bool looks_like_mercury_data(std::string_view text);
 /// say the boundary.
 ParticleSet parse_mercury_data(std::string_view text, const std::string& name, std::optional<std::int64_t> frame);
 
-/// Index of snapshot `frame` among `count` (nothing: the last), or
-/// InputError("frame") naming the range and the file.
-std::size_t resolve_frame(std::optional<std::int64_t> frame, std::size_t count, const std::string& name);
-
 }  // namespace hgrid::detail

@@ -94,4 +94,14 @@ std::size_t count_number(std::string_view token, const std::string& field, const
   return static_cast<std::size_t>(v);
 }
 
+std::size_t resolve_frame(std::optional<std::int64_t> frame, std::size_t count, const std::string& name) {
+  const auto c = static_cast<std::int64_t>(count);
+  const std::int64_t k = frame.value_or(-1);
+  if (count == 0 || k >= c || k < -c)
+    throw InputError("frame", "must be in [" + std::to_string(-c) + ", " + std::to_string(c - 1) + "]: " + name +
+                                  " holds " + std::to_string(count) + " snapshot" + (count == 1 ? "" : "s") +
+                                  " (got " + std::to_string(k) + ")");
+  return static_cast<std::size_t>(k < 0 ? c + k : k);
+}
+
 }  // namespace hgrid::detail

@@ -1,8 +1,10 @@
-// Line-by-line reading of text particle files, shared by the table and the
-// LAMMPS readers: line numbers, tokens, numbers, and the messages that name
-// the file, the line and the field.
+// Line-by-line reading of text particle files, shared by the table, LAMMPS and
+// MercuryDPM readers: line numbers, tokens, numbers, the snapshot asked for,
+// and the messages that name the file, the line and the field.
 #pragma once
 #include <cstddef>
+#include <optional>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -46,5 +48,11 @@ double finite_number(std::string_view token, const std::string& field, const Lin
 double positive_number(std::string_view token, const std::string& field, const Lines& at);
 /// A count: a non-negative integer that fits, at most `max`.
 std::size_t count_number(std::string_view token, const std::string& field, const Lines& at, std::size_t max);
+
+/// The snapshot a reader takes from a file of `count`: `frame` from the
+/// first (0-based) or from the end when negative, nothing: the last;
+/// InputError("frame") naming the range and the file otherwise. Files of
+/// one snapshot (tables, LAMMPS data, HDF5) take 0 or -1.
+std::size_t resolve_frame(std::optional<std::int64_t> frame, std::size_t count, const std::string& name);
 
 }  // namespace hgrid::detail
