@@ -61,7 +61,7 @@ for placement in excluded random; do
               ((.narrow_phase_checks + $kc * .cell_accesses) / .n),
               .seconds_query_best, .seconds_query_median, .seconds_build_best,
               (.sizes | map(tostring) | join(";")),
-              (.predicted_seconds_query // ""), (.predicted_seconds_build // "")] | @csv' | tr -d '"' >> "$tmp"
+              (.predicted_seconds_query_one_thread // ""), (.predicted_seconds_build_one_thread // "")] | @csv' | tr -d '"' >> "$tmp"
       done
       done
       echo "calibration figure: $placement omega=$omega nu=$nu done" >&2

@@ -100,8 +100,7 @@ trap 'rm -f "$tmp"' EXIT
           jq -r --arg seed "$seed" --arg m "$method" --arg a "$alpha" --arg w "$omega" --arg nu "$nu" --arg s "$sweeps" --arg acc "$acc" \
             '[.boundary, $a, $w, $nu, .n, $s, $acc, .T_over_N, .model_T_over_N, .model_excluded_T_over_N,
               (.T_over_N / .model_T_over_N - 1), (.T_over_N / .model_excluded_T_over_N - 1),
-              .per_level[0].narrow_phase_checks_by_level_searched[0],
-              .per_level[0].model_excluded_narrow_phase_checks_by_level_searched[0], $seed, $m] | @csv' | tr -d '"'
+              .checks_by_level[0], .model_excluded_checks_by_level[0], $seed, $m] | @csv' | tr -d '"'
       done
     done
   done <<< "$points"

@@ -15,6 +15,8 @@
 #include "experiment/recommend.hpp"
 #include "experiment/recommend_json.hpp"
 #include "grid/dispatch.hpp"
+#include "measure/fields.hpp"
+#include "measure/measurement.hpp"
 #include "grid/error.hpp"
 #include "grid/hgrid.hpp"
 #include "grid/version.hpp"
@@ -100,31 +102,37 @@ py::array_t<std::uint32_t> pairs(const DoubleArray& positions, const DoubleArray
   return out;
 }
 
+/// The measurement as a dict: every field of its table (measure/fields.hpp),
+/// None where not measured.
+py::dict to_dict(const Measurement& m) {
+  py::dict out;
+  for (const MeasurementField& f : measurement_fields())
+    out[f.name] = std::visit(
+        [](const auto& v) -> py::object {
+          if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::monostate>)
+            return py::none();
+          else
+            return py::cast(v);
+        },
+        f.value(m));
+  return out;
+}
+
 py::dict count(const DoubleArray& positions, const DoubleArray& radii, const DoubleArray& box, bool periodic,
-               const std::optional<std::vector<double>>& sizes, const std::string& search, double K, int threads) {
+               const std::optional<std::vector<double>>& sizes, const std::string& search, double K, int threads,
+               bool model) {
   const Packing p = make_packing(positions, radii, box, periodic);
   GridParams params = grid_params(p, sizes, search);
   params.threads = check_threads(threads);
-  std::vector<double> used;
-  const Counters c = dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
-    constexpr int D = decltype(dim)::value;
-    const auto spheres = p.spheres<D>();
-    const HGrid<D, decltype(bnd)::value> grid(spheres, p.extent<D>(), params);
-    used = grid.sizes();
-    return grid.template for_each_pair<Counted>([](std::uint32_t, std::uint32_t) {});
-  });
-  py::dict out;
-  out["cell_accesses"] = c.cell_accesses;
-  out["narrow_phase_checks"] = c.narrow_phase_checks;
-  out["contacts"] = c.contacts;
-  out["levels"] = c.levels;
-  out["particles_per_level"] = c.particles_per_level;
-  out["accesses_by_level"] = c.accesses_by_level;
-  out["checks_by_level"] = c.checks_by_level;
-  out["sizes"] = used;
-  out["K"] = K;
-  out["T_over_N"] = p.size() ? c.cost(K) / static_cast<double>(p.size()) : 0.0;
-  return out;
+  MeasureOptions mo;
+  mo.K = K;
+  mo.model = mo.excluded_model = model;
+  Measurement m;
+  {
+    py::gil_scoped_release release;
+    m = measure(p, params, mo);
+  }
+  return to_dict(m);
 }
 
 py::dict read_particle_file(const std::string& path, std::optional<std::int64_t> frame) {
@@ -168,8 +176,17 @@ PYBIND11_MODULE(hgridlab, m) {
         "(default: recommended); threads: 0 = all cores (OMP_NUM_THREADS), the same pairs for any number.");
   m.def("count", &count, py::arg("positions"), py::arg("radii"), py::arg("box"), py::arg("periodic") = true,
         py::arg("sizes") = py::none(), py::arg("search") = "topdown", py::arg("K") = kPaperK, py::arg("threads") = 0,
-        "The counted search (the same counts for any number of threads): cell_accesses, narrow_phase_checks, contacts, particles_per_level, accesses_by_level and "
-        "checks_by_level (L x L, row-major: level of the particle, level searched), the sizes used, T_over_N.");
+        py::arg("model") = false,
+        "The counted search (the same counts for any number of threads) as a dict with the fields of "
+        "`hgrid count --json` (docs/MEASUREMENT.md): cell_accesses, narrow_phase_checks, contacts, "
+        "particles_per_level, accesses_by_level and checks_by_level (L x L, row-major: level of the particle, level "
+        "searched), sizes (as used), T_over_N, ...; model=True adds the cost models' predictions (model_*).");
+  m.def("measurement_fields", [] {
+    py::list out;
+    for (const MeasurementField& f : measurement_fields())
+      out.append(py::make_tuple(f.name, f.unit, f.meaning));
+    return out;
+  }, "The fields of a measurement (count's dict): (name, unit, meaning) tuples.");
   m.def("read_packing", &read_particle_file, py::arg("path"), py::arg("frame") = py::none(),
         "A particle file of any supported format: radii, positions (or None), box (or None), boundary (or None), "
         "d, format, nu (or None).");

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # The include order of the stages: a file below src/<stage>/ includes only
-# from its own stage and the stages before it (grid, model, packing, io, dpm,
-# experiment, mpi); another stage's detail/ is never included. Usage: check_includes.sh SRC_ROOT
+# from its own stage and the stages before it (grid, model, packing, io,
+# measure, dpm, experiment, mpi); another stage's detail/ is never included. Usage: check_includes.sh SRC_ROOT
 set -euo pipefail
 root="${1:-.}"
-stages=(grid model packing io dpm experiment mpi)
+stages=(grid model packing io measure dpm experiment mpi)
 rank() { local i; for i in "${!stages[@]}"; do [ "${stages[$i]}" = "$1" ] && { echo "$i"; return; }; done; echo -1; }
 bad=0
 for s in "${stages[@]}"; do

@@ -38,10 +38,10 @@ class Journal : public ::testing::Test {
   static void expect_same_counts(const std::vector<PointResult>& a, const std::vector<PointResult>& b) {
     ASSERT_EQ(a.size(), b.size());
     for (std::size_t i = 0; i < a.size(); ++i) {
-      EXPECT_EQ(a[i].counts.accesses_by_level, b[i].counts.accesses_by_level) << i;
-      EXPECT_EQ(a[i].counts.checks_by_level, b[i].counts.checks_by_level) << i;
-      EXPECT_EQ(a[i].sizes, b[i].sizes) << i;
-      EXPECT_EQ(a[i].T_over_N, b[i].T_over_N) << i;
+      EXPECT_EQ(a[i].m.counts.accesses_by_level, b[i].m.counts.accesses_by_level) << i;
+      EXPECT_EQ(a[i].m.counts.checks_by_level, b[i].m.counts.checks_by_level) << i;
+      EXPECT_EQ(a[i].m.sizes, b[i].m.sizes) << i;
+      EXPECT_EQ(a[i].m.T_over_N, b[i].m.T_over_N) << i;
     }
   }
 
@@ -69,7 +69,7 @@ TEST_F(Journal, PathsPerRank) {
 TEST_F(Journal, EveryRanksJournalIsReusedWithAllItsLevels) {
   const std::vector<PointResult> first = run_scene(scene_, opt_);
   ASSERT_EQ(first.size(), 4u);
-  for (const auto& r : first) ASSERT_GT(r.counts.levels, 1);
+  for (const auto& r : first) ASSERT_GT(r.m.counts.levels, 1);
   const std::string stem = result_stem(scene_, opt_);
   EXPECT_TRUE(journal_files(stem).empty());
 
@@ -96,8 +96,8 @@ TEST_F(Journal, ResultLinesRoundTripExactly) {
   const PointResult r = run_point(scene_, scene_.points[1], opt_);
   const PointResult back = result_from_json_line(result_json_line(r), scene_.grid.K);
   expect_same_counts({back}, {r});
-  EXPECT_EQ(back.model_T_over_N, r.model_T_over_N);
-  EXPECT_EQ(back.seconds_query, r.seconds_query);
+  EXPECT_EQ(back.m.model_T_over_N, r.m.model_T_over_N);
+  EXPECT_EQ(back.m.seconds_query, r.m.seconds_query);
   EXPECT_THROW(result_from_json_line(result_json_line(r), scene_.grid.K * 2), InputError);  // T/N disagrees
 }
 

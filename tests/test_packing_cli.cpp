@@ -182,7 +182,7 @@ TEST_F(Cli, CountJson) {
   EXPECT_EQ(j["contacts"], 1);
   EXPECT_DOUBLE_EQ(j["T_over_N"].get<double>(), (6 + 0.5 * 11) / 4.0);
   EXPECT_EQ(j["sizes"].size(), 1u);
-  EXPECT_EQ(j["per_level"][0]["particles"], 4);
+  EXPECT_EQ(j["particles_per_level"][0], 4);
 }
 
 TEST_F(Cli, CountReportsTheWallPairsModelAsked) {

@@ -93,10 +93,10 @@ void expect_excluded_model_recorded(const std::string& name) {
   constexpr double kExcludedModelRelTol = 0.05;
   int checked = 0;
   for (const auto& r : regression_scene(name).results) {
-    ASSERT_TRUE(std::isfinite(r.model_excluded_T_over_N));
+    ASSERT_TRUE(std::isfinite(r.m.model_excluded_T_over_N));
     SCOPED_TRACE(::testing::Message() << to_string(r.point.packing.boundary) << " alpha=" << r.point.packing.alpha
-                                      << " measured=" << r.T_over_N << " excluded model=" << r.model_excluded_T_over_N);
-    EXPECT_NEAR(r.T_over_N / r.model_excluded_T_over_N, 1.0, kExcludedModelRelTol);
+                                      << " measured=" << r.m.T_over_N << " excluded model=" << r.m.model_excluded_T_over_N);
+    EXPECT_NEAR(r.m.T_over_N / r.m.model_excluded_T_over_N, 1.0, kExcludedModelRelTol);
     ++checked;
   }
   EXPECT_EQ(checked, 4);
@@ -135,17 +135,17 @@ TEST(Regression, RandomPeriodicMatchesModel) {
       continue;
     // m_h of the population the sample was drawn from (only its size matters here).
     const PowerLaw dist(s.alpha, s.omega);
-    std::vector<double> sizes = r.sizes;
+    std::vector<double> sizes = r.m.sizes;
     sizes.back() = std::max(sizes.back(), 2 * dist.r_max());
     const ModelResult m = evaluate_model(dist, ModelParams{s.d, s.nu, 0.2, r.point.search}, sizes);
     double m_max = 0;
     for (double v : m.m) m_max = std::max(m_max, v);
-    const double n = static_cast<double>(r.n);
-    const double sd = std::sqrt((1 + 2 * m_max) * r.model_T_cd_over_N / n);
+    const double n = static_cast<double>(r.m.n);
+    const double sd = std::sqrt((1 + 2 * m_max) * r.m.model_T_cd_over_N / n);
     SCOPED_TRACE(::testing::Message() << "alpha=" << s.alpha << " omega=" << s.omega << " nu=" << s.nu
-                                      << " seed=" << s.seed << " measured=" << r.T_over_N
-                                      << " model=" << r.model_T_over_N << " sd=" << sd);
-    EXPECT_LE(std::abs(r.T_over_N - r.model_T_over_N), kSigmas * sd);
+                                      << " seed=" << s.seed << " measured=" << r.m.T_over_N
+                                      << " model=" << r.m.model_T_over_N << " sd=" << sd);
+    EXPECT_LE(std::abs(r.m.T_over_N - r.m.model_T_over_N), kSigmas * sd);
     ++checked;
   }
   EXPECT_GE(checked, 4);

@@ -11,6 +11,8 @@
 
 #include "cli/common.hpp"
 #include "model/distribution.hpp"
+#include "measure/fields.hpp"
+#include "measure/measurement.hpp"
 #include "model/model.hpp"
 #include "mpi/comm.hpp"
 #include "mpi/decomposed.hpp"
@@ -51,36 +53,39 @@ void run_decomposed_count(const std::string& file, const GridParams& g, double K
   keep_freed_memory();
   const mpi::DecomposedRun r = mpi::decomposed_search(file, g, true, nullptr);
   if (mpi::rank() != 0) return;
-  using nlohmann::json;
+  // The record of the serial search's fields, for the work of every rank
+  // (ghosts' searches included: what decomposing costs) and the model of
+  // the serial grid for a sample of the radii.
+  Measurement m;
+  m.n = r.n;
+  m.d = r.d;
+  m.boundary = r.boundary;
+  m.nu_achieved = r.packing_fraction;
+  m.search = g.search;
+  m.threads = resolve_threads(g.threads);
+  m.K = K;
+  m.sizes_requested = g.sizes;
+  m.sizes = r.sizes;
+  m.counts = r.work;
   const double n = static_cast<double>(r.n);
-  json j;
-  j["n"] = r.n;
-  j["d"] = r.d;
-  j["boundary"] = to_string(r.boundary);
+  m.T_over_N = n > 0 ? r.work.cost(K) / n : 0.0;
+  m.T_cd_over_N = n > 0 ? static_cast<double>(r.work.narrow_phase_checks) / n : 0.0;
+  m.T_ca_over_N = n > 0 ? static_cast<double>(r.work.cell_accesses) / n : 0.0;
+  const ModelResult model = evaluate_model(Empirical(r.radii_sample),
+                                           ModelParams{r.d, r.packing_fraction, K, g.search}, r.sizes);
+  m.model_T_over_N = model.T_over_N;
+  m.model_T_cd_over_N = model.T_cd_over_N;
+  m.model_T_ca_over_N = model.T_ca_over_N;
+  static constexpr std::string_view kFields[] = {
+      "n", "d", "boundary", "nu_achieved", "search", "threads", "K", "sizes_requested", "sizes", "levels",
+      "cell_accesses", "narrow_phase_checks", "contacts", "T_over_N", "T_cd_over_N", "T_ca_over_N",
+      "model_T_over_N", "model_T_cd_over_N", "model_T_ca_over_N"};
+  using json = nlohmann::ordered_json;
+  json j = json::parse(measurement_json(m, kFields));
   j["box"] = std::vector<double>(r.box.begin(), r.box.begin() + r.d);
-  j["packing_fraction"] = r.packing_fraction;
   j["r_max"] = r.r_max;
-  j["search"] = to_string(g.search);
   j["ranks"] = r.ranks.size();
   j["bricks"] = r.bricks;
-  j["threads_per_rank"] = resolve_threads(g.threads);
-  j["K"] = K;
-  j["sizes_requested"] = g.sizes;
-  j["sizes"] = r.sizes;
-  j["levels"] = r.work.levels;
-  // The work of every rank, ghosts' searches included: what decomposing costs.
-  j["cell_accesses"] = r.work.cell_accesses;
-  j["narrow_phase_checks"] = r.work.narrow_phase_checks;
-  j["contacts"] = r.work.contacts;
-  j["T_over_N"] = n > 0 ? r.work.cost(K) / n : 0.0;
-  j["T_cd_over_N"] = n > 0 ? static_cast<double>(r.work.narrow_phase_checks) / n : 0.0;
-  j["T_ca_over_N"] = n > 0 ? static_cast<double>(r.work.cell_accesses) / n : 0.0;
-  // The model of the serial grid, for a sample of the radii.
-  const ModelResult m = evaluate_model(Empirical(r.radii_sample), ModelParams{r.d, r.packing_fraction, K, g.search},
-                                       r.sizes);
-  j["model_T_over_N"] = m.T_over_N;
-  j["model_T_cd_over_N"] = m.T_cd_over_N;
-  j["model_T_ca_over_N"] = m.T_ca_over_N;
   j["model_radii"] = r.radii_sample.size();
   j["ghosts"] = r.ghosts;
   j["shell_ghosts"] = r.shell_ghosts;
@@ -124,7 +129,7 @@ void run_decomposed_count(const std::string& file, const GridParams& g, double K
   std::printf("total: %llu cell accesses, %llu narrow-phase checks (all ranks, ghosts included), %llu contacts, "
               "T/N = %.6g (model, serial grid: %.6g)\n",
               (unsigned long long)r.work.cell_accesses, (unsigned long long)r.work.narrow_phase_checks,
-              (unsigned long long)r.work.contacts, j["T_over_N"].get<double>(), m.T_over_N);
+              (unsigned long long)r.work.contacts, m.T_over_N, m.model_T_over_N);
   std::printf("ghosts: %llu level-aware, %llu with a 2 r_max shell (%.3g x); peak memory %.4g bytes per particle\n",
               (unsigned long long)r.ghosts, (unsigned long long)r.shell_ghosts, j["shell_over_level_aware"].get<double>(),
               j["peak_rss_bytes_per_particle"].get<double>());

@@ -1,6 +1,5 @@
 // hgrid pairs / hgrid count: the HGrid on a packing file.
 #include <cmath>
-#include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -9,7 +8,6 @@
 #include <vector>
 
 #include "cli/common.hpp"
-#include "packing/packing_model.hpp"
 #include "packing/packing_sizes.hpp"
 #include "grid/brute_force.hpp"
 #include "experiment/balance.hpp"
@@ -17,18 +15,15 @@
 #include "grid/dispatch.hpp"
 #include "grid/hgrid.hpp"
 #include "packing/packing.hpp"
-#include "experiment/timing.hpp"
 #include "io/packing_file.hpp"
 #include "io/particle_file.hpp"
-#include "model/distribution.hpp"
+#include "measure/fields.hpp"
+#include "measure/measurement.hpp"
 #include "model/excluded.hpp"
 #include "model/time_model.hpp"
 
 namespace hgrid::cli {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 struct GridOptions {
   std::string file;
@@ -121,130 +116,50 @@ void run_pairs(const GridOptions& o, bool brute) {
   });
 }
 
-nlohmann::json count_json(const Packing& p, const GridParams& g, const std::vector<double>& used, const Counters& c,
-                          double K, double t_build, double t_query, WallPairs wall_pairs) {
-  using nlohmann::json;
-  const double n = static_cast<double>(p.size());
-  json j;
-  j["n"] = p.size();
-  j["d"] = p.d;
-  j["boundary"] = to_string(p.boundary);
-  j["boundary_source"] = boundary_description(p) == to_string(p.boundary) ? "file" : kBoundaryAssumed;
-  j["packing_fraction"] = p.packing_fraction();
-  j["search"] = to_string(g.search);
-  j["threads"] = resolve_threads(g.threads);
-  j["K"] = K;
-  j["sizes_requested"] = g.sizes;
-  j["sizes"] = used;
-  j["levels"] = c.levels;
-  j["cell_accesses"] = c.cell_accesses;
-  j["narrow_phase_checks"] = c.narrow_phase_checks;
-  j["contacts"] = c.contacts;
-  j["T_over_N"] = n > 0 ? c.cost(K) / n : 0.0;
-  j["T_cd_over_N"] = n > 0 ? static_cast<double>(c.narrow_phase_checks) / n : 0.0;
-  j["T_ca_over_N"] = n > 0 ? static_cast<double>(c.cell_accesses) / n : 0.0;
-  const PackingModels models = model_for_packing(p, used, g.search, K, true, true, wall_pairs);
-  if (p.boundary == Boundary::walls) j["wall_pairs"] = to_string(wall_pairs);
-  j["model_T_over_N"] = models.random.T_over_N;
-  j["model_T_cd_over_N"] = models.random.T_cd_over_N;
-  j["model_T_ca_over_N"] = models.random.T_ca_over_N;
-  if (models.excluded) {
-    j["model_excluded_T_over_N"] = models.excluded->T_over_N;
-    j["model_excluded_T_cd_over_N"] = models.excluded->T_cd_over_N;
-  } else {
-    j["model_excluded_T_over_N"] = nullptr;
-    j["model_excluded_skipped"] = models.excluded_skipped;
-  }
-  json levels = json::array();
-  const int L = c.levels;
-  for (int h = 0; h < L; ++h) {
-    json row;
-    row["level"] = h + 1;
-    row["size"] = used[h];
-    row["particles"] = c.particles_per_level[h];
-    std::uint64_t acc = 0, chk = 0;
-    json acc_row = json::array(), chk_row = json::array();
-    for (int k = 0; k < L; ++k) {
-      acc += c.accesses_by_level[h * L + k];
-      chk += c.checks_by_level[h * L + k];
-      acc_row.push_back(c.accesses_by_level[h * L + k]);
-      chk_row.push_back(c.checks_by_level[h * L + k]);
-    }
-    row["cell_accesses"] = acc;
-    row["narrow_phase_checks"] = chk;
-    row["cell_accesses_by_level_searched"] = acc_row;
-    row["narrow_phase_checks_by_level_searched"] = chk_row;
-    // The models' expected checks (counts, like the measurement).
-    json mr = json::array(), me = json::array();
-    for (int k = 0; k < L; ++k) {
-      mr.push_back(n * models.random.T_cd_pair[h * L + k]);
-      if (models.excluded) me.push_back(n * models.excluded->T_cd_pair[h * L + k]);
-    }
-    row["model_narrow_phase_checks_by_level_searched"] = mr;
-    if (models.excluded) row["model_excluded_narrow_phase_checks_by_level_searched"] = me;
-    levels.push_back(row);
-  }
-  j["per_level"] = levels;
-  j["seconds_build"] = t_build;
-  j["seconds_query"] = t_query;
-  return j;
-}
-
-/// The time model's seconds (this machine's calibration) for the sizes used:
-/// predicted from the model's expected terms (predicted_seconds_*) and from
-/// the terms this query counted (predicted_seconds_*_from_counts).
-void add_predicted_seconds(nlohmann::json& j, const Packing& p, const std::vector<double>& used, Search search,
-                           double K, const TimeTerms& counted) {
-  const std::optional<Calibration> cal = stored_calibration();
-  const TimeModelFit* t = cal ? cal->time_model(p.d) : nullptr;
-  if (!t) {
-    j["time_model"] = "none: no calibration with a " + std::to_string(p.d) + "D time model at " + calibration_path() +
-                      " (run `hgrid calibrate`)";
-    return;
-  }
-  j["time_model"] = "calibration of " + cal->date + " on " + cal->machine + " (seconds on one thread)";
-  const Empirical dist(p.radii);
-  const ModelParams mp{p.d, p.packing_fraction(), K, search};
-  const PredictedSeconds e = predict_seconds(t->coef, expected_time_terms(dist, mp, used, double(p.size())));
-  const PredictedSeconds c = predict_seconds(t->coef, counted);
-  j["predicted_seconds_build"] = e.build;
-  j["predicted_seconds_query"] = e.query;
-  j["predicted_seconds_build_from_counts"] = c.build;
-  j["predicted_seconds_query_from_counts"] = c.query;
-}
-
-void print_count_table(const nlohmann::json& j) {
-  std::printf("n = %zu, d = %d, %s%s, nu = %.6g, search %s, K = %g\n", j["n"].get<std::size_t>(), j["d"].get<int>(),
-              j["boundary"].get<std::string>().c_str(),
-              j["boundary_source"] == "file" ? "" : " (not in the file: assumed)", j["packing_fraction"].get<double>(),
-              j["search"].get<std::string>().c_str(), j["K"].get<double>());
-  const bool ex = !j["model_excluded_T_over_N"].is_null();
+/// The text form of `count`: the record's per-level table and totals.
+void print_count(const Measurement& m) {
+  std::printf("n = %llu, d = %d, %s%s, nu = %.6g, search %s, K = %g\n", (unsigned long long)m.n, m.d,
+              to_string(m.boundary), m.boundary_assumed ? " (not in the file: assumed)" : "", m.nu_achieved,
+              to_string(m.search), m.K);
+  const bool ex = !m.model_excluded_checks_by_level.empty();
+  const auto L = static_cast<std::size_t>(m.counts.levels);
+  const auto row_sum = [L](const auto& v, std::size_t h) {
+    double s = 0;
+    for (std::size_t k = 0; k < L && h * L + k < v.size(); ++k) s += static_cast<double>(v[h * L + k]);
+    return s;
+  };
   // The models' columns: expected narrow-phase checks of the level's particles.
   std::printf("%5s %14s %12s %16s %20s %14s %16s\n", "level", "size", "particles", "cell_accesses", "narrow_phase_checks",
               "model_checks", "excluded_checks");
-  for (const auto& row : j["per_level"]) {
-    double mr = 0, me = 0;
-    for (const auto& v : row["model_narrow_phase_checks_by_level_searched"]) mr += v.get<double>();
-    if (ex)
-      for (const auto& v : row["model_excluded_narrow_phase_checks_by_level_searched"]) me += v.get<double>();
-    std::printf("%5d %14.6g %12llu %16llu %20llu %14.6g %16s\n", row["level"].get<int>(), row["size"].get<double>(),
-                row["particles"].get<unsigned long long>(), row["cell_accesses"].get<unsigned long long>(),
-                row["narrow_phase_checks"].get<unsigned long long>(), mr,
-                ex ? std::to_string(me).c_str() : "-");
-  }
+  for (std::size_t h = 0; h < L; ++h)
+    std::printf("%5zu %14.6g %12llu %16.0f %20.0f %14.6g %16s\n", h + 1, m.sizes[h],
+                (unsigned long long)m.counts.particles_per_level[h], row_sum(m.counts.accesses_by_level, h),
+                row_sum(m.counts.checks_by_level, h), row_sum(m.model_checks_by_level, h),
+                ex ? std::to_string(row_sum(m.model_excluded_checks_by_level, h)).c_str() : "-");
   std::printf("total: %llu cell accesses, %llu narrow-phase checks, %llu contacts, T/N = %.6g\n",
-              j["cell_accesses"].get<unsigned long long>(), j["narrow_phase_checks"].get<unsigned long long>(),
-              j["contacts"].get<unsigned long long>(), j["T_over_N"].get<double>());
-  std::printf("model T/N = %.6g (random centres)", j["model_T_over_N"].get<double>());
+              (unsigned long long)m.counts.cell_accesses, (unsigned long long)m.counts.narrow_phase_checks,
+              (unsigned long long)m.counts.contacts, m.T_over_N);
+  std::printf("model T/N = %.6g (random centres)", m.model_T_over_N);
   if (ex)
-    std::printf(", %.6g (excluded volume)\n", j["model_excluded_T_over_N"].get<double>());
+    std::printf(", %.6g (excluded volume)\n", m.model_excluded_T_over_N);
   else
-    std::printf("; excluded-volume model: %s\n", j["model_excluded_skipped"].get<std::string>().c_str());
+    std::printf("; excluded-volume model: %s\n", m.model_excluded_skipped.c_str());
+  if (m.repeats > 0)
+    std::printf("wall time, fastest of %d uncounted runs on %d threads: query %.6g s, build %.6g s\n", m.repeats,
+                m.threads, m.seconds_query_best, m.seconds_build_best);
+  if (!m.time_model.empty())
+    std::printf("time model (%s), one thread: query %.6g s, build %.6g s (from the counts: %.6g s, %.6g s)\n",
+                m.time_model.c_str(), m.predicted_seconds_query_one_thread, m.predicted_seconds_build_one_thread,
+                m.predicted_seconds_query_one_thread_from_counts, m.predicted_seconds_build_one_thread_from_counts);
 }
 
 /// --balance P1,P2,...: the simulated load balance of the query on P threads
 /// (experiment/balance.hpp), priced by this machine's time model if stored.
-nlohmann::json balance_json(const Packing& p, const GridParams& g, const std::string& list, double K) {
+struct BalanceRun {
+  std::vector<Balance> rows;
+  std::string cost;
+};
+BalanceRun balance_of(const Packing& p, const GridParams& g, const std::string& list, double K) {
   std::vector<int> threads;
   for (const double v : parse_list(list, "balance")) {
     if (!(v >= 1 && v <= 1e6 && v == std::floor(v)))
@@ -255,11 +170,7 @@ nlohmann::json balance_json(const Packing& p, const GridParams& g, const std::st
   cost.K = K;
   const std::optional<Calibration> cal = stored_calibration();
   if (const TimeModelFit* t = cal ? cal->time_model(p.d) : nullptr) cost.coef = t->coef;
-  nlohmann::json out = nlohmann::json::array();
-  for (const Balance& b : simulate_balance(p, g, threads, cost))
-    out.push_back({{"threads", b.threads}, {"pieces", b.pieces}, {"imbalance", b.imbalance},
-                   {"largest_piece", b.largest_piece}});
-  return {{"balance", out}, {"balance_cost", cost.name()}};
+  return {simulate_balance(p, g, threads, cost), cost.name()};
 }
 
 void run_count(const GridOptions& o, const std::string& K_text, int repeat, bool as_json,
@@ -274,45 +185,34 @@ void run_count(const GridOptions& o, const std::string& K_text, int repeat, bool
   const Packing p = read_packing(o.file, Isolation::child_process, kIsolatedReadBaseSeconds, o.frame);
   check_file_dimension(p.d, o.d, o.file);
   const GridParams g = resolve(o, p, K);
-  nlohmann::json j = dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
-    constexpr int D = decltype(dim)::value;
-    constexpr Boundary B = decltype(bnd)::value;
-    const auto spheres = p.spheres<D>();
-    auto t0 = Clock::now();
-    const HGrid<D, B> grid(spheres, p.extent<D>(), g);
-    const double t_build = seconds_since(t0);
-    t0 = Clock::now();
-    const Counters c = grid.template for_each_pair<Counted>([](std::uint32_t, std::uint32_t) {});
-    const double t_query = seconds_since(t0);
-    nlohmann::json out = count_json(p, g, grid.sizes(), c, K, t_build, t_query, wall_pairs);
-    add_predicted_seconds(out, p, grid.sizes(), g.search, K, counted_time_terms(c, build_work(grid)));
-    return out;
-  });
-  if (!balance.empty()) j.update(balance_json(p, g, balance, K));
-  if (repeat > 0) {
-    const QueryTiming t = time_query(p, g, TimingOptions{repeat, repeat, 0.0});
-    j["repeats"] = t.repeats;
-    j["seconds_query_best"] = t.query_seconds;
-    j["seconds_query_median"] = t.median_query_seconds;
-    j["seconds_build_best"] = t.build_seconds;
+  MeasureOptions mo;
+  mo.K = K;
+  mo.model = mo.excluded_model = mo.model_progress = true;
+  mo.wall_pairs = wall_pairs;
+  if (repeat > 0) mo.timing = TimingOptions{repeat, repeat, 0.0};
+  const std::optional<Calibration> cal = stored_calibration();
+  if (const TimeModelFit* t = cal ? cal->time_model(p.d) : nullptr) {
+    mo.time_model = t->coef;
+    mo.time_model_source = "calibration of " + cal->date + " on " + cal->machine;
   }
-  if (as_json)
-    std::cout << j.dump(2) << "\n";
-  else
-    print_count_table(j);
-  if (!as_json && repeat > 0)
-    std::printf("wall time, fastest of %d uncounted runs: query %.6g s, build %.6g s\n", repeat,
-                j["seconds_query_best"].get<double>(), j["seconds_build_best"].get<double>());
-  if (!as_json && j.contains("balance"))
-    for (const auto& b : j["balance"])
+  const Measurement m = measure(p, g, mo);
+  const BalanceRun b = balance.empty() ? BalanceRun{} : balance_of(p, g, balance, K);
+  if (!as_json) {
+    print_count(m);
+    for (const Balance& r : b.rows)
       std::printf("simulated on %d threads (%zu pieces, %s): imbalance %.2f %%, largest piece %.3g of a thread's share\n",
-                  b["threads"].get<int>(), b["pieces"].get<std::size_t>(), j["balance_cost"].get<std::string>().c_str(),
-                  100 * b["imbalance"].get<double>(), b["largest_piece"].get<double>());
-  if (!as_json && j.contains("predicted_seconds_query"))
-    std::printf("time model (%s): query %.6g s, build %.6g s (from the counts: %.6g s, %.6g s)\n",
-                j["time_model"].get<std::string>().c_str(), j["predicted_seconds_query"].get<double>(),
-                j["predicted_seconds_build"].get<double>(), j["predicted_seconds_query_from_counts"].get<double>(),
-                j["predicted_seconds_build_from_counts"].get<double>());
+                  r.threads, r.pieces, b.cost.c_str(), 100 * r.imbalance, r.largest_piece);
+    return;
+  }
+  auto j = nlohmann::ordered_json::parse(measurement_json(m));
+  if (!balance.empty()) {
+    j["balance"] = nlohmann::ordered_json::array();
+    for (const Balance& r : b.rows)
+      j["balance"].push_back({{"threads", r.threads}, {"pieces", r.pieces}, {"imbalance", r.imbalance},
+                              {"largest_piece", r.largest_piece}});
+    j["balance_cost"] = b.cost;
+  }
+  std::cout << j.dump(2) << "\n";
 }
 
 }  // namespace

@@ -108,7 +108,9 @@ std::vector<double> scene_sizes(const CalibrationScene& s, const Packing& p) {
 }
 
 CalibrationSample measure_scene(const CalibrationScene& s, const Packing& p, const TimingOptions& opt) {
-  const QueryTiming t = time_query(p, GridParams{scene_sizes(s, p), Search::top_down}, opt);
+  MeasureOptions mo;
+  mo.timing = opt;
+  const Measurement t = measure(p, GridParams{scene_sizes(s, p), Search::top_down}, mo);
   CalibrationSample out;
   out.scene = s;
   out.n = p.size();
@@ -116,8 +118,8 @@ CalibrationSample measure_scene(const CalibrationScene& s, const Packing& p, con
   out.accesses = t.counts.cell_accesses;
   out.checks = t.counts.narrow_phase_checks;
   out.contacts = t.counts.contacts;
-  out.seconds = t.query_seconds;
-  out.build_seconds = t.build_seconds;
+  out.seconds = t.seconds_query_best;
+  out.build_seconds = t.seconds_build_best;
   out.repeats = t.repeats;
   out.terms = counted_time_terms(t.counts, t.build_work);
   return out;

@@ -10,7 +10,7 @@
 
 #include "experiment/calibration.hpp"
 #include "packing/generate.hpp"
-#include "experiment/timing.hpp"
+#include "measure/measurement.hpp"
 
 namespace hgrid {
 

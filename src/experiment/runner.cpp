@@ -15,12 +15,7 @@
 #include "experiment/journal.hpp"
 #include "experiment/result_files.hpp"
 #include "io/atomic_file.hpp"
-#include "grid/dispatch.hpp"
-#include "model/distribution.hpp"
-#include "grid/hgrid.hpp"
 #include "grid/threads.hpp"
-#include "model/model.hpp"
-#include "packing/packing_model.hpp"
 #include "packing/packing_sizes.hpp"
 #include "packing/progress.hpp"
 #include "experiment/packing_cache.hpp"
@@ -49,8 +44,6 @@ PointResult run_point(const Scene& scene, const ScenePoint& point, const RunOpti
   spec.threads = threads > 0 ? threads : std::max(1, resolve_threads(0) / std::max(1, opt.jobs));
   const Packing p = cached_packing(spec, opt.packing_dir);
   r.seconds_packing = since(t0);
-  r.n = p.size();
-  r.nu_achieved = p.packing_fraction();
   r.equilibration_sweeps = equilibration_sweeps_done(p);
 
   t0 = Clock::now();
@@ -61,45 +54,12 @@ PointResult run_point(const Scene& scene, const ScenePoint& point, const RunOpti
   const std::vector<double> sizes = model_sizes(p, req, point.search, scene.grid.K);
   r.seconds_sizes = since(t0);
 
-  dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
-    constexpr int D = decltype(dim)::value;
-    constexpr Boundary B = decltype(bnd)::value;
-    const auto spheres = p.spheres<D>();
-    auto t1 = Clock::now();
-    const HGrid<D, B> grid(spheres, p.extent<D>(), GridParams{sizes, point.search});
-    r.seconds_build = since(t1);
-    t1 = Clock::now();
-    r.counts = grid.template for_each_pair<Counted>([](std::uint32_t, std::uint32_t) {});
-    r.seconds_query = since(t1);
-    r.sizes = grid.sizes();
-    if (scene.record.occupancy) {
-      const auto occ = grid.occupancy(0);
-      r.share_multi_lowest = static_cast<double>(occ[2]) / static_cast<double>(occ[0] + occ[1] + occ[2]);
-    } else {
-      r.share_multi_lowest = std::nan("");
-    }
-  });
-  const double n = static_cast<double>(r.n);
-  r.T_over_N = r.counts.cost(scene.grid.K) / n;
-  r.T_cd_over_N = static_cast<double>(r.counts.narrow_phase_checks) / n;
-  r.T_ca_over_N = static_cast<double>(r.counts.cell_accesses) / n;
-  if (scene.record.model) {
-    // The model for the same radii, packing fraction and (fitted) sizes.
-    const Empirical dist(p.radii);
-    const bool hard_spheres = point.packing.placement == Placement::excluded;
-    const PackingModels m =
-        model_for_packing(p, sizes_for_grid(r.sizes, 2 * dist.r_max()), point.search, scene.grid.K, hard_spheres);
-    r.model_T_over_N = m.random.T_over_N;
-    r.model_T_cd_over_N = m.random.T_cd_over_N;
-    r.model_T_ca_over_N = m.random.T_ca_over_N;
-    const bool excluded = hard_spheres && m.excluded;
-    r.model_excluded_T_over_N = excluded ? m.excluded->T_over_N : std::nan("");
-    r.model_excluded_T_cd_over_N = excluded ? m.excluded->T_cd_over_N : std::nan("");
-    r.model_excluded_T_ca_over_N = excluded ? m.excluded->T_ca_over_N : std::nan("");
-  } else {
-    r.model_T_over_N = r.model_T_cd_over_N = r.model_T_ca_over_N = std::nan("");
-    r.model_excluded_T_over_N = r.model_excluded_T_cd_over_N = r.model_excluded_T_ca_over_N = std::nan("");
-  }
+  MeasureOptions mo;
+  mo.K = scene.grid.K;
+  mo.model = scene.record.model;
+  mo.excluded_model = point.packing.placement == Placement::excluded;  // the hard-sphere model for hard spheres
+  mo.occupancy = scene.record.occupancy;
+  r.m = measure(p, GridParams{sizes, point.search}, mo);
   return r;
 }
 

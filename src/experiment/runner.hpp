@@ -5,26 +5,19 @@
 #include <string>
 #include <vector>
 
-#include "grid/counters.hpp"
+#include "measure/measurement.hpp"
 #include "experiment/scene.hpp"
 
 namespace hgrid {
 
-/// Measured and predicted work of one point. Model and occupancy fields are
-/// NaN when the scene does not record them.
+/// One point of a scene: its measurement (measure/measurement.hpp; the
+/// model and occupancy fields are NaN when the scene does not record them)
+/// and what the runner adds.
 struct PointResult {
   ScenePoint point;
-  std::size_t n = 0;
-  double nu_achieved = 0;
+  Measurement m;
   std::uint64_t equilibration_sweeps = 0;  // Monte Carlo sweeps the packing had (0: none)
-  std::vector<double> sizes;  // cell sizes used (fitted to a periodic box)
-  Counters counts;
-  double T_over_N = 0, T_cd_over_N = 0, T_ca_over_N = 0;
-  double model_T_over_N = 0, model_T_cd_over_N = 0, model_T_ca_over_N = 0;
-  // The excluded-volume model (excluded placement, 3D; NaN otherwise).
-  double model_excluded_T_over_N = 0, model_excluded_T_cd_over_N = 0, model_excluded_T_ca_over_N = 0;
-  double share_multi_lowest = 0;  // lowest-level cells with >= 2 particles / all its cells
-  double seconds_packing = 0, seconds_sizes = 0, seconds_build = 0, seconds_query = 0;
+  double seconds_packing = 0, seconds_sizes = 0;
 };
 
 struct RunOptions {

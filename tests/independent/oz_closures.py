@@ -126,10 +126,10 @@ if __name__ == "__main__":
     B = int(sys.argv[7]) if len(sys.argv) > 7 else 2
     N, dr = 8192, 0.02
     sizes, n = dct["sizes"], dct["n"]
-    lv = dct["per_level"]
-    meas = np.array([l["narrow_phase_checks_by_level_searched"] for l in lv], float)
-    rnd = np.array([l["model_narrow_phase_checks_by_level_searched"] for l in lv], float)
-    exc = np.array([l["model_excluded_narrow_phase_checks_by_level_searched"] for l in lv], float)
+    L = dct["levels"]  # L x L tables, row-major: level of the particle, level searched
+    meas = np.array(dct["checks_by_level"], float).reshape(L, L)
+    rnd = np.array(dct["model_checks_by_level"], float).reshape(L, L)
+    exc = np.array(dct["model_excluded_checks_by_level"], float).reshape(L, L)
     ex, its, sec = level_excess(alpha, omega, nu, sizes, B, which, aRY, N, dr)
     print(f"closure {which} (a = {aRY}), {B} classes per level, dr = {dr}, {N} points: {its} iterations, {sec:.1f} s")
     print("searching level h -> level 1: excess checks, measured / C++ model / this solution")

@@ -13,12 +13,10 @@
 #include "packing/packing.hpp"
 #include "io/provenance.hpp"
 #include "io/atomic_file.hpp"
+#include "measure/fields.hpp"
 
 namespace hgrid {
 namespace {
-
-/// JSON has no NaN: unrecorded values travel as null.
-nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 std::string utc_now() {
   std::time_t t = std::time(nullptr);
@@ -29,48 +27,36 @@ std::string utc_now() {
 
 }  // namespace
 
+namespace {
+/// The measurement's fields a scene records (measure/fields.hpp names them).
+constexpr std::string_view kMeasuredFields[] = {
+    "n", "search", "levels", "sizes", "nu_achieved", "cell_accesses", "narrow_phase_checks", "contacts",
+    "particles_per_level", "accesses_by_level", "checks_by_level", "T_over_N", "T_cd_over_N", "T_ca_over_N",
+    "model_T_over_N", "model_T_cd_over_N", "model_T_ca_over_N", "model_excluded_T_over_N",
+    "model_excluded_T_cd_over_N", "model_excluded_T_ca_over_N", "share_multi_lowest", "seconds_build",
+    "seconds_query"};
+}  // namespace
+
 nlohmann::json detail::result_to_json(const PointResult& r) {
   const PackingSpec& s = r.point.packing;
-  const Counters& c = r.counts;
-  return {{"d", s.d},
-          {"n", r.n},
-          {"nu", s.nu},
-          {"nu_achieved", r.nu_achieved},
-          {"dist", s.dist},
-          {"alpha", s.alpha},
-          {"omega", s.omega},
-          {"sigma", s.sigma},
-          {"boundary", to_string(s.boundary)},
-          {"placement", to_string(s.placement)},
-          {"method", to_string(s.method)},
-          {"seed", s.seed},
-          {"equilibrate", s.equilibrate},
-          {"sweeps", s.sweeps},
-          {"stop", to_string(s.stop)},
-          {"equilibration_sweeps", r.equilibration_sweeps},
-          {"search", to_string(r.point.search)},
-          {"levels", c.levels},
-          {"sizes", r.sizes},
-          {"cell_accesses", c.cell_accesses},
-          {"narrow_phase_checks", c.narrow_phase_checks},
-          {"contacts", c.contacts},
-          {"particles_per_level", c.particles_per_level},
-          {"accesses_by_level", c.accesses_by_level},
-          {"checks_by_level", c.checks_by_level},
-          {"T_over_N", r.T_over_N},
-          {"T_cd_over_N", r.T_cd_over_N},
-          {"T_ca_over_N", r.T_ca_over_N},
-          {"model_T_over_N", num(r.model_T_over_N)},
-          {"model_T_cd_over_N", num(r.model_T_cd_over_N)},
-          {"model_T_ca_over_N", num(r.model_T_ca_over_N)},
-          {"model_excluded_T_over_N", num(r.model_excluded_T_over_N)},
-          {"model_excluded_T_cd_over_N", num(r.model_excluded_T_cd_over_N)},
-          {"model_excluded_T_ca_over_N", num(r.model_excluded_T_ca_over_N)},
-          {"share_multi_lowest", num(r.share_multi_lowest)},
-          {"seconds_packing", r.seconds_packing},
-          {"seconds_sizes", r.seconds_sizes},
-          {"seconds_build", r.seconds_build},
-          {"seconds_query", r.seconds_query}};
+  nlohmann::json j = nlohmann::json::parse(measurement_json(r.m, kMeasuredFields, -1));
+  j.update({{"d", s.d},
+            {"nu", s.nu},
+            {"dist", s.dist},
+            {"alpha", s.alpha},
+            {"omega", s.omega},
+            {"sigma", s.sigma},
+            {"boundary", to_string(s.boundary)},
+            {"placement", to_string(s.placement)},
+            {"method", to_string(s.method)},
+            {"seed", s.seed},
+            {"equilibrate", s.equilibrate},
+            {"sweeps", s.sweeps},
+            {"stop", to_string(s.stop)},
+            {"equilibration_sweeps", r.equilibration_sweeps},
+            {"seconds_packing", r.seconds_packing},
+            {"seconds_sizes", r.seconds_sizes}});
+  return j;
 }
 
 namespace {
@@ -148,15 +134,19 @@ PointResult detail::result_from_json(const nlohmann::json& j) {
     r.equilibration_sweeps = s.equilibrate ? static_cast<std::uint64_t>(s.sweeps) : 0;
   }
   r.point.search = parse_search(text_of(j, "search"));
-  r.n = count_of(j, "n");
-  r.nu_achieved = finite_of(j, "nu_achieved");
+  Measurement& m = r.m;
+  m.d = s.d;
+  m.boundary = s.boundary;
+  m.search = r.point.search;
+  m.n = count_of(j, "n");
+  m.nu_achieved = finite_of(j, "nu_achieved");
   const auto& sizes = field(j, "sizes");
   if (!sizes.is_array()) throw InputError("sizes", "must be a list of numbers");
   for (const auto& e : sizes) {
     if (!e.is_number() || !std::isfinite(e.get<double>())) throw InputError("sizes", "must be finite numbers");
-    r.sizes.push_back(e.get<double>());
+    m.sizes.push_back(e.get<double>());
   }
-  Counters& c = r.counts;
+  Counters& c = m.counts;
   c.levels = static_cast<int>(count_of(j, "levels"));
   c.cell_accesses = count_of(j, "cell_accesses");
   c.narrow_phase_checks = count_of(j, "narrow_phase_checks");
@@ -165,42 +155,43 @@ PointResult detail::result_from_json(const nlohmann::json& j) {
   c.particles_per_level = counts_of(j, "particles_per_level", kLevels);
   c.accesses_by_level = counts_of(j, "accesses_by_level", kLevels * kLevels);
   c.checks_by_level = counts_of(j, "checks_by_level", kLevels * kLevels);
-  r.T_over_N = finite_of(j, "T_over_N");
-  r.T_cd_over_N = finite_of(j, "T_cd_over_N");
-  r.T_ca_over_N = finite_of(j, "T_ca_over_N");
-  r.model_T_over_N = optional_of(j, "model_T_over_N");
-  r.model_T_cd_over_N = optional_of(j, "model_T_cd_over_N");
-  r.model_T_ca_over_N = optional_of(j, "model_T_ca_over_N");
+  m.T_over_N = finite_of(j, "T_over_N");
+  m.T_cd_over_N = finite_of(j, "T_cd_over_N");
+  m.T_ca_over_N = finite_of(j, "T_ca_over_N");
+  m.model_T_over_N = optional_of(j, "model_T_over_N");
+  m.model_T_cd_over_N = optional_of(j, "model_T_cd_over_N");
+  m.model_T_ca_over_N = optional_of(j, "model_T_ca_over_N");
   // Absent in journals written before the excluded-volume model: not recorded.
-  for (auto [key, dst] : {std::pair{"model_excluded_T_over_N", &r.model_excluded_T_over_N},
-                          std::pair{"model_excluded_T_cd_over_N", &r.model_excluded_T_cd_over_N},
-                          std::pair{"model_excluded_T_ca_over_N", &r.model_excluded_T_ca_over_N}})
+  for (auto [key, dst] : {std::pair{"model_excluded_T_over_N", &m.model_excluded_T_over_N},
+                          std::pair{"model_excluded_T_cd_over_N", &m.model_excluded_T_cd_over_N},
+                          std::pair{"model_excluded_T_ca_over_N", &m.model_excluded_T_ca_over_N}})
     *dst = j.is_object() && j.contains(key) ? optional_of(j, key) : std::nan("");
-  r.share_multi_lowest = optional_of(j, "share_multi_lowest");
+  m.share_multi_lowest = optional_of(j, "share_multi_lowest");
   r.seconds_packing = finite_of(j, "seconds_packing");
   r.seconds_sizes = finite_of(j, "seconds_sizes");
-  r.seconds_build = finite_of(j, "seconds_build");
-  r.seconds_query = finite_of(j, "seconds_query");
+  m.seconds_build = finite_of(j, "seconds_build");
+  m.seconds_query = finite_of(j, "seconds_query");
   return r;
 }
 
 void detail::check_result(const PointResult& r, double K) {
-  const Counters& c = r.counts;
+  const Measurement& m = r.m;
+  const Counters& c = m.counts;
   const auto L = static_cast<std::size_t>(c.levels);
   // Sizes and particles per level; accesses and checks per pair of levels
   // (particle's level x level searched, Counters).
-  if (c.levels < 1 || r.sizes.size() != L || c.particles_per_level.size() != L ||
+  if (c.levels < 1 || m.sizes.size() != L || c.particles_per_level.size() != L ||
       c.accesses_by_level.size() != L * L || c.checks_by_level.size() != L * L)
     throw InputError("levels", "the per-level lists do not have one entry per level (L x L by level pairs)");
   std::uint64_t n = 0, acc = 0, chk = 0;
   for (std::uint64_t v : c.particles_per_level) n += v;
   for (std::uint64_t v : c.accesses_by_level) acc += v;
   for (std::uint64_t v : c.checks_by_level) chk += v;
-  if (n != r.n || r.n != r.point.packing.n) throw InputError("particles_per_level", "does not add up to n");
+  if (n != m.n || m.n != r.point.packing.n) throw InputError("particles_per_level", "does not add up to n");
   if (acc != c.cell_accesses) throw InputError("accesses_by_level", "does not add up to cell_accesses");
   if (chk != c.narrow_phase_checks) throw InputError("checks_by_level", "does not add up to narrow_phase_checks");
   if (c.contacts > c.narrow_phase_checks) throw InputError("contacts", "more contacts than checks");
-  if (r.T_over_N != c.cost(K) / static_cast<double>(r.n)) throw InputError("T_over_N", "is not (checks + K accesses) / n");
+  if (m.T_over_N != c.cost(K) / static_cast<double>(m.n)) throw InputError("T_over_N", "is not (checks + K accesses) / n");
 }
 
 namespace {
@@ -259,7 +250,7 @@ void write_results(const std::string& stem, const Scene& scene, const std::vecto
   std::size_t lmax = 0;
   for (const auto& r : results) {
     rows.push_back(detail::result_to_json(r));
-    lmax = std::max<std::size_t>(lmax, r.counts.levels);
+    lmax = std::max<std::size_t>(lmax, r.m.counts.levels);
   }
   const hsize_t P = rows.size(), L = lmax;
   detail::h5_write_file(stem + ".h5", [&](hid_t f) {
@@ -277,7 +268,7 @@ void write_results(const std::string& stem, const Scene& scene, const std::vecto
     std::vector<double> sizes(P * L, std::nan(""));
     std::vector<std::uint64_t> particles(P * L, 0), acc(P * L * L, 0), chk(P * L * L, 0);
     for (std::size_t i = 0; i < results.size(); ++i) {
-      const auto& r = results[i];
+      const Measurement& r = results[i].m;
       const std::size_t l = r.counts.levels;
       for (std::size_t h = 0; h < l; ++h) {
         sizes[i * L + h] = r.sizes[h];

@@ -1,0 +1,108 @@
+#include "measure/fields.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+namespace hgrid {
+namespace {
+
+FieldValue num(double v) { return std::isfinite(v) ? FieldValue(v) : FieldValue(std::monostate{}); }
+FieldValue text(const std::string& s) { return s.empty() ? FieldValue(std::monostate{}) : FieldValue(s); }
+FieldValue whole(std::uint64_t v) { return FieldValue(v); }
+template <class T>
+FieldValue list(const std::vector<T>& v) {
+  return v.empty() ? FieldValue(std::monostate{}) : FieldValue(v);
+}
+
+using M = Measurement;
+// clang-format off
+const MeasurementField kFields[] = {
+  {"n", "1", "particles", [](const M& m) { return whole(m.n); }},
+  {"d", "1", "dimension (2: discs, 3: spheres)", [](const M& m) { return FieldValue(std::int64_t{m.d}); }},
+  {"boundary", "", "periodic or walls", [](const M& m) { return FieldValue(std::string(to_string(m.boundary))); }},
+  {"boundary_source", "", "file, or 'assumed: not in the file' (periodic)",
+   [](const M& m) { return FieldValue(std::string(m.boundary_assumed ? "assumed: not in the file" : "file")); }},
+  {"nu_achieved", "1", "packing fraction of the particles in their box", [](const M& m) { return num(m.nu_achieved); }},
+  {"search", "", "cross-level search: topdown or bottomup", [](const M& m) { return FieldValue(std::string(to_string(m.search))); }},
+  {"threads", "1", "threads the counted search ran on (the counts do not depend on it)",
+   [](const M& m) { return FieldValue(std::int64_t{m.threads}); }},
+  {"K", "1", "weight of a cell access in T = narrow-phase checks + K cell accesses (Eq. 27)", [](const M& m) { return num(m.K); }},
+  {"sizes_requested", "length", "cell sizes asked for, per level", [](const M& m) { return list(m.sizes_requested); }},
+  {"sizes", "length", "cell sizes the grid used (equal ones merged; fitted to a periodic box)", [](const M& m) { return list(m.sizes); }},
+  {"levels", "1", "L, levels the grid used", [](const M& m) { return FieldValue(std::int64_t{m.counts.levels}); }},
+  {"cell_accesses", "1", "T_ca: cells visited by the search (Eq. 12-16)", [](const M& m) { return whole(m.counts.cell_accesses); }},
+  {"narrow_phase_checks", "1", "T_cd: sphere-sphere overlap tests (Eq. 17-22)", [](const M& m) { return whole(m.counts.narrow_phase_checks); }},
+  {"contacts", "1", "overlapping pairs found", [](const M& m) { return whole(m.counts.contacts); }},
+  {"particles_per_level", "1", "particles in each level (L)", [](const M& m) { return list(m.counts.particles_per_level); }},
+  {"accesses_by_level", "1", "cell accesses, L x L row-major: level of the particle, level searched",
+   [](const M& m) { return list(m.counts.accesses_by_level); }},
+  {"checks_by_level", "1", "narrow-phase checks, L x L like accesses_by_level", [](const M& m) { return list(m.counts.checks_by_level); }},
+  {"T_over_N", "1", "T / N = (checks + K accesses) / n", [](const M& m) { return num(m.T_over_N); }},
+  {"T_cd_over_N", "1", "narrow-phase checks / n", [](const M& m) { return num(m.T_cd_over_N); }},
+  {"T_ca_over_N", "1", "cell accesses / n", [](const M& m) { return num(m.T_ca_over_N); }},
+  {"model_T_over_N", "1", "the paper's model (random centres) for the same radii, nu and sizes", [](const M& m) { return num(m.model_T_over_N); }},
+  {"model_T_cd_over_N", "1", "its checks / n", [](const M& m) { return num(m.model_T_cd_over_N); }},
+  {"model_T_ca_over_N", "1", "its cell accesses / n", [](const M& m) { return num(m.model_T_ca_over_N); }},
+  {"model_checks_by_level", "1", "its expected checks, L x L like checks_by_level", [](const M& m) { return list(m.model_checks_by_level); }},
+  {"model_excluded_T_over_N", "1", "the excluded-volume model (hard spheres; docs/MODEL.md section 8)",
+   [](const M& m) { return num(m.model_excluded_T_over_N); }},
+  {"model_excluded_T_cd_over_N", "1", "its checks / n", [](const M& m) { return num(m.model_excluded_T_cd_over_N); }},
+  {"model_excluded_T_ca_over_N", "1", "its cell accesses / n", [](const M& m) { return num(m.model_excluded_T_ca_over_N); }},
+  {"model_excluded_checks_by_level", "1", "its expected checks, L x L like checks_by_level",
+   [](const M& m) { return list(m.model_excluded_checks_by_level); }},
+  {"model_excluded_skipped", "", "why the excluded-volume model was not computed", [](const M& m) { return text(m.model_excluded_skipped); }},
+  {"wall_pairs", "", "walls: the excluded-volume model's pairs near a wall (layer or product)",
+   [](const M& m) { return m.wall_pairs ? FieldValue(std::string(to_string(*m.wall_pairs))) : FieldValue(std::monostate{}); }},
+  {"share_multi_lowest", "1", "lowest-level cells holding >= 2 particles / its occupied and empty cells",
+   [](const M& m) { return num(m.share_multi_lowest); }},
+  {"seconds_build", "s", "wall time of the counted search's build", [](const M& m) { return num(m.seconds_build); }},
+  {"seconds_query", "s", "wall time of the counted search", [](const M& m) { return num(m.seconds_query); }},
+  {"repeats", "1", "uncounted build + search runs timed", [](const M& m) { return FieldValue(std::int64_t{m.repeats}); }},
+  {"seconds_build_best", "s", "fastest uncounted build", [](const M& m) { return num(m.seconds_build_best); }},
+  {"seconds_query_best", "s", "fastest uncounted search (what a simulation runs)", [](const M& m) { return num(m.seconds_query_best); }},
+  {"seconds_query_median", "s", "median uncounted search", [](const M& m) { return num(m.seconds_query_median); }},
+  {"time_model", "", "the calibration the predicted seconds come from", [](const M& m) { return text(m.time_model); }},
+  {"predicted_seconds_build_one_thread", "s", "the time model's build on one thread (expected terms for the sizes used)",
+   [](const M& m) { return num(m.predicted_seconds_build_one_thread); }},
+  {"predicted_seconds_query_one_thread", "s", "the time model's search on one thread (expected terms)",
+   [](const M& m) { return num(m.predicted_seconds_query_one_thread); }},
+  {"predicted_seconds_build_one_thread_from_counts", "s", "the same from the terms this build counted",
+   [](const M& m) { return num(m.predicted_seconds_build_one_thread_from_counts); }},
+  {"predicted_seconds_query_one_thread_from_counts", "s", "the same from the terms this search counted",
+   [](const M& m) { return num(m.predicted_seconds_query_one_thread_from_counts); }},
+};
+// clang-format on
+
+nlohmann::ordered_json to_json(const FieldValue& v) {
+  return std::visit(
+      [](const auto& x) -> nlohmann::ordered_json {
+        if constexpr (std::is_same_v<std::decay_t<decltype(x)>, std::monostate>)
+          return nullptr;
+        else
+          return x;
+      },
+      v);
+}
+
+}  // namespace
+
+std::span<const MeasurementField> measurement_fields() { return kFields; }
+
+const MeasurementField& measurement_field(std::string_view name) {
+  for (const auto& f : kFields)
+    if (name == f.name) return f;
+  throw std::logic_error("measurement_field: no field '" + std::string(name) + "'");
+}
+
+std::string measurement_json(const Measurement& m, std::span<const std::string_view> names, int indent) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  for (const auto& f : kFields)
+    if (names.empty() || std::find(names.begin(), names.end(), std::string_view(f.name)) != names.end())
+      j[f.name] = to_json(f.value(m));
+  for (const auto& n : names) (void)measurement_field(n);  // every name asked for exists
+  return j.dump(indent);
+}
+
+}  // namespace hgrid

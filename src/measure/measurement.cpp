@@ -1,0 +1,138 @@
+#include "measure/measurement.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+
+#include "grid/dispatch.hpp"
+#include "grid/error.hpp"
+#include "grid/hgrid.hpp"
+#include "io/particle_file.hpp"
+#include "model/cell_sizes.hpp"
+#include "model/distribution.hpp"
+#include "packing/packing_model.hpp"
+
+namespace hgrid {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+/// Repeats build + uncounted query (each timed on its own) and keeps the
+/// fastest; every run must find the counted search's pairs.
+template <int D, Boundary B>
+void time_uncounted(const std::vector<Sphere<D>>& spheres, const Extent<D>& box, const GridParams& g,
+                    const TimingOptions& opt, Measurement& m) {
+  if (opt.min_repeats < 1 || opt.max_repeats < opt.min_repeats)
+    throw InputError("repeat", "need 1 <= min_repeats <= max_repeats");
+  struct alignas(64) Slot {  // pairs found per thread (one cache line each)
+    std::uint64_t n = 0;
+  };
+  std::vector<Slot> found(static_cast<std::size_t>(resolve_threads(g.threads)));
+  std::vector<double> queries;
+  double total = 0, best_build = 1e300;
+  while (static_cast<int>(queries.size()) < opt.max_repeats &&
+         (static_cast<int>(queries.size()) < opt.min_repeats || total < opt.min_seconds)) {
+    auto t0 = Clock::now();
+    const HGrid<D, B> grid(spheres, box, g);
+    best_build = std::min(best_build, since(t0));
+    for (auto& f : found) f.n = 0;
+    t0 = Clock::now();
+    grid.for_each_pair([&found](int t, std::uint32_t, std::uint32_t) { ++found[static_cast<std::size_t>(t)].n; });
+    const double t = since(t0);
+    std::uint64_t pairs = 0;
+    for (const auto& f : found) pairs += f.n;
+    if (pairs != m.counts.contacts) throw std::logic_error("measure: uncounted and counted searches found different pairs");
+    queries.push_back(t);
+    total += t;
+  }
+  std::sort(queries.begin(), queries.end());
+  m.repeats = static_cast<int>(queries.size());
+  m.seconds_query_best = queries.front();
+  m.seconds_query_median = queries[queries.size() / 2];
+  m.seconds_build_best = best_build;
+}
+
+void add_models(const Packing& p, const MeasureOptions& o, Measurement& m) {
+  const Empirical dist(p.radii);
+  const std::vector<double> sizes = sizes_for_grid(m.sizes, 2 * dist.r_max());
+  const PackingModels pm =
+      model_for_packing(p, sizes, m.search, o.K, o.excluded_model, o.model_progress, o.wall_pairs);
+  const double n = static_cast<double>(m.n);
+  const auto checks = [n](const std::vector<double>& per_particle) {
+    std::vector<double> out;
+    for (const double v : per_particle) out.push_back(n * v);
+    return out;
+  };
+  m.model_T_over_N = pm.random.T_over_N;
+  m.model_T_cd_over_N = pm.random.T_cd_over_N;
+  m.model_T_ca_over_N = pm.random.T_ca_over_N;
+  m.model_checks_by_level = checks(pm.random.T_cd_pair);
+  if (!o.excluded_model) return;
+  if (p.boundary == Boundary::walls) m.wall_pairs = o.wall_pairs;
+  if (!pm.excluded) {
+    m.model_excluded_skipped = pm.excluded_skipped;
+    return;
+  }
+  m.model_excluded_T_over_N = pm.excluded->T_over_N;
+  m.model_excluded_T_cd_over_N = pm.excluded->T_cd_over_N;
+  m.model_excluded_T_ca_over_N = pm.excluded->T_ca_over_N;
+  m.model_excluded_checks_by_level = checks(pm.excluded->T_cd_pair);
+}
+
+void add_predicted_seconds(const Packing& p, const MeasureOptions& o, Measurement& m) {
+  m.time_model = o.time_model_source;
+  const Empirical dist(p.radii);
+  const ModelParams mp{p.d, m.nu_achieved, o.K, m.search};
+  const PredictedSeconds e =
+      predict_seconds(*o.time_model, expected_time_terms(dist, mp, m.sizes, static_cast<double>(m.n)));
+  const PredictedSeconds c = predict_seconds(*o.time_model, counted_time_terms(m.counts, m.build_work));
+  m.predicted_seconds_build_one_thread = e.build;
+  m.predicted_seconds_query_one_thread = e.query;
+  m.predicted_seconds_build_one_thread_from_counts = c.build;
+  m.predicted_seconds_query_one_thread_from_counts = c.query;
+}
+
+}  // namespace
+
+Measurement measure(const Packing& p, const GridParams& g, const MeasureOptions& o) {
+  if (p.size() == 0) throw InputError("packing", "no particles to measure");
+  Measurement m;
+  m.n = p.size();
+  m.d = p.d;
+  m.boundary = p.boundary;
+  const auto src = p.str_attrs.find(kBoundarySourceAttr);
+  m.boundary_assumed = src != p.str_attrs.end() && src->second == kBoundaryAssumed;
+  m.nu_achieved = p.packing_fraction();
+  m.search = g.search;
+  m.threads = resolve_threads(g.threads);
+  m.K = o.K;
+  m.sizes_requested = g.sizes;
+  dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
+    constexpr int D = decltype(dim)::value;
+    constexpr Boundary B = decltype(bnd)::value;
+    const auto spheres = p.spheres<D>();
+    auto t0 = Clock::now();
+    const HGrid<D, B> grid(spheres, p.extent<D>(), g);
+    m.seconds_build = since(t0);
+    t0 = Clock::now();
+    m.counts = grid.template for_each_pair<Counted>([](std::uint32_t, std::uint32_t) {});
+    m.seconds_query = since(t0);
+    m.sizes = grid.sizes();
+    m.build_work = build_work(grid);
+    if (o.occupancy) {
+      const auto occ = grid.occupancy(0);
+      m.share_multi_lowest = static_cast<double>(occ[2]) / static_cast<double>(occ[0] + occ[1] + occ[2]);
+    }
+    if (o.timing) time_uncounted<D, B>(spheres, p.extent<D>(), g, *o.timing, m);
+  });
+  const double n = static_cast<double>(m.n);
+  m.T_over_N = m.counts.cost(o.K) / n;
+  m.T_cd_over_N = static_cast<double>(m.counts.narrow_phase_checks) / n;
+  m.T_ca_over_N = static_cast<double>(m.counts.cell_accesses) / n;
+  if (o.model) add_models(p, o, m);
+  if (o.time_model) add_predicted_seconds(p, o, m);
+  return m;
+}
+
+}  // namespace hgrid
