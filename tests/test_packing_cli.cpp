@@ -185,6 +185,16 @@ TEST_F(Cli, CountJson) {
   EXPECT_EQ(j["particles_per_level"][0], 4);
 }
 
+// docs/MEASUREMENT.md's table of fields is the tool's own.
+TEST_F(Cli, MeasurementFieldsAreDocumented) {
+  const Result r = hgrid_run("fields --markdown");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::ifstream f(std::string(HGRID_SOURCE_DIR) + "/docs/MEASUREMENT.md");
+  const std::string doc((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  ASSERT_FALSE(r.out.empty());
+  EXPECT_NE(doc.find(r.out), std::string::npos) << "regenerate the table with `hgrid fields --markdown`";
+}
+
 TEST_F(Cli, CountReportsTheWallPairsModelAsked) {
   // A walled excluded-volume packing: the same counts, two wall closures of
   // the excluded-volume model; the product charges the wall layers the bulk

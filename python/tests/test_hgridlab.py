@@ -128,6 +128,26 @@ def test_count_returns_the_counts():
         hgridlab.count(positions, radii, box, True, sizes=[1.0])  # below the largest diameter
 
 
+def test_count_has_the_fields_of_count_json(tmp_path):
+    positions, radii, box = scene(nu=0.3)
+    c = hgridlab.count(positions, radii, box, True, K=0.2, threads=1, model=True)
+    names = [f[0] for f in hgridlab.measurement_fields()]
+    assert list(c) == names  # one table: the same names, in the same order
+    path = tmp_path / "p.csv"
+    path.write_text("# box %r %r %r\n# boundary periodic\nx,y,z,r\n" % tuple(box)
+                    + "".join("%r,%r,%r,%r\n" % (*p, r) for p, r in zip(positions.tolist(), radii.tolist())))
+    sizes = ",".join(repr(s) for s in c["sizes_requested"])
+    out = subprocess.run([os.environ["HGRID_BINARY"], "count", str(path), "--sizes", sizes, "--threads", "1", "--json"],
+                         check=True, capture_output=True, text=True).stdout
+    j = json.loads(out)
+    assert list(j) == names
+    for k in ("cell_accesses", "narrow_phase_checks", "contacts", "accesses_by_level", "checks_by_level",
+              "particles_per_level", "levels", "n"):
+        assert j[k] == c[k], k
+    assert j["model_T_over_N"] == pytest.approx(c["model_T_over_N"], rel=1e-12)
+    assert c["seconds_query_best"] is None and c["repeats"] == 0  # not asked: None
+
+
 def test_read_packing_every_kind(tmp_path):
     csv = tmp_path / "p.csv"
     csv.write_text("# box 10 10 10\n# boundary walls\nid,x,y,z,diameter\n1,1,2,3,1\n2,4,5,6,0.5\n")

@@ -219,6 +219,16 @@ void run_count(const GridOptions& o, const std::string& K_text, int repeat, bool
 
 void register_grid_commands(CLI::App& app) {
   {
+    auto md = std::make_shared<bool>(false);
+    auto* sub = app.add_subcommand("fields", "the fields of a measurement (count --json, result files, Python's count)");
+    sub->add_flag("--markdown", *md, "as a Markdown table (docs/MEASUREMENT.md)");
+    sub->callback([md] {
+      if (*md) std::printf("| field | unit | meaning |\n|---|---|---|\n");
+      for (const MeasurementField& f : measurement_fields())
+        std::printf(*md ? "| `%s` | %s | %s |\n" : "%-48s %-7s %s\n", f.name, *f.unit ? f.unit : "-", f.meaning);
+    });
+  }
+  {
     auto o = std::make_shared<GridOptions>();
     auto brute = std::make_shared<bool>(false);
     auto* sub = app.add_subcommand("pairs", "print every overlapping pair 'i j' (0-based, i < j), one per line");
@@ -246,7 +256,7 @@ void register_grid_commands(CLI::App& app) {
                     "walls, excluded-volume model: layer (no pair excess for centres within the largest radius of a "
                     "wall; docs/MODEL.md section 8) or product (Kirkwood's superposition everywhere)")
         ->default_val("layer");
-    sub->add_flag("--json", *js, "print one JSON object");
+    sub->add_flag("--json", *js, "print one JSON object (its fields: `hgrid fields`, docs/MEASUREMENT.md)");
     sub->callback([o, K, repeat, js, balance] { run_count(*o, *K, *repeat, *js, *balance); });
   }
 }
