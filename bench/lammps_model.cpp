@@ -19,9 +19,9 @@
 #include <CLI/CLI.hpp>
 
 #include "bench/lammps_run.hpp"
-#include "experiment/lammps_fit.hpp"
-#include "experiment/packing_cache.hpp"
-#include "grid/error.hpp"
+#include "advice/lammps_fit.hpp"
+#include "io/packing_cache.hpp"
+#include "base/error.hpp"
 #include "io/lammps_export.hpp"
 #include "io/provenance.hpp"
 #include "model/lammps_multi.hpp"

@@ -30,12 +30,12 @@
 #include "grid/hgrid.hpp"
 #include "io/lammps_export.hpp"
 #include "io/peer_settings.hpp"
-#include "experiment/k_choice.hpp"
-#include "experiment/recommend.hpp"
+#include "calibration/k_choice.hpp"
+#include "advice/recommend.hpp"
 #include "bench/lammps_run.hpp"
 #include "packing/packing_sizes.hpp"
 #include "io/provenance.hpp"
-#include "experiment/packing_cache.hpp"
+#include "io/packing_cache.hpp"
 
 namespace {
 

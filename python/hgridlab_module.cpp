@@ -11,14 +11,13 @@
 #include <string>
 #include <vector>
 
-#include "experiment/k_choice.hpp"
-#include "experiment/recommend.hpp"
-#include "experiment/recommend_json.hpp"
-#include "grid/dispatch.hpp"
+#include "calibration/k_choice.hpp"
+#include "advice/recommend.hpp"
+#include "advice/recommend_json.hpp"
 #include "measure/fields.hpp"
 #include "measure/measurement.hpp"
-#include "grid/error.hpp"
-#include "grid/hgrid.hpp"
+#include "measure/pairs.hpp"
+#include "base/error.hpp"
 #include "grid/version.hpp"
 #include "io/particle_file.hpp"
 #include "packing/packing.hpp"
@@ -85,14 +84,9 @@ py::array_t<std::uint32_t> pairs(const DoubleArray& positions, const DoubleArray
   std::vector<std::vector<std::uint32_t>> per(static_cast<std::size_t>(resolve_threads(params.threads)));
   {
     py::gil_scoped_release release;
-    dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
-      constexpr int D = decltype(dim)::value;
-      const auto spheres = p.spheres<D>();
-      const HGrid<D, decltype(bnd)::value> grid(spheres, p.extent<D>(), params);
-      grid.for_each_pair([&](int t, std::uint32_t i, std::uint32_t j) {
-        auto& v = per[static_cast<std::size_t>(t)];
-        v.push_back(i), v.push_back(j);
-      });
+    for_each_packing_pair(p, params, [&](int t, std::uint32_t i, std::uint32_t j) {
+      auto& v = per[static_cast<std::size_t>(t)];
+      v.push_back(i), v.push_back(j);
     });
   }
   std::vector<std::uint32_t> flat;

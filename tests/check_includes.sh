@@ -1,12 +1,17 @@
 #!/usr/bin/env bash
 # The include order of the stages: a file below src/<stage>/ includes only
-# from its own stage and the stages before it (grid, model, packing, io,
-# measure, dpm, experiment, mpi); another stage's detail/ is never included. Usage: check_includes.sh SRC_ROOT
+# from its own stage and the stages before it (base, grid, model, packing,
+# io, measure, dpm, calibration, advice, scenes, mpi); another stage's
+# detail/ is never included. Usage: check_includes.sh SRC_ROOT
 set -euo pipefail
 root="${1:-.}"
-stages=(grid model packing io measure dpm experiment mpi)
+stages=(base grid model packing io measure dpm calibration advice scenes mpi)
 rank() { local i; for i in "${!stages[@]}"; do [ "${stages[$i]}" = "$1" ] && { echo "$i"; return; }; done; echo -1; }
 bad=0
+for d in "$root"/src/*/; do  # every folder of src/ is a stage (or the tool)
+  d=$(basename "$d")
+  [ "$d" = cli ] || [ "$(rank "$d")" -ge 0 ] || { echo "src/$d: a folder in no stage (add it to stages)"; bad=1; }
+done
 for s in "${stages[@]}"; do
   own=$(rank "$s")
   while IFS= read -r -d '' f; do

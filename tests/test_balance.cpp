@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "experiment/balance.hpp"
+#include "measure/balance.hpp"
 #include "support.hpp"
 
 namespace {

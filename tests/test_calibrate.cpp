@@ -8,10 +8,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "experiment/calibrate.hpp"
-#include "experiment/calibration.hpp"
-#include "grid/error.hpp"
-#include "experiment/scene.hpp"
+#include "calibration/calibrate.hpp"
+#include "calibration/calibration.hpp"
+#include "base/error.hpp"
+#include "scenes/scene.hpp"
 
 namespace hgrid {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "model/cell_sizes.hpp"
 #include "model/detail/model_sizes.hpp"
-#include "grid/error.hpp"
+#include "base/error.hpp"
 
 using namespace hgrid;
 

@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_support.hpp"
-#include "experiment/calibration.hpp"
+#include "calibration/calibration.hpp"
 
 namespace {
 

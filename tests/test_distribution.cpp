@@ -7,7 +7,7 @@
 #include <numeric>
 
 #include "model/distribution.hpp"
-#include "grid/error.hpp"
+#include "base/error.hpp"
 
 using namespace hgrid;
 

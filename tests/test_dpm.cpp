@@ -8,7 +8,7 @@
 #include <random>
 
 #include "dpm/simulation.hpp"
-#include "grid/error.hpp"
+#include "base/error.hpp"
 
 namespace hgrid::dpm {
 namespace {

@@ -6,7 +6,7 @@
 #include <numbers>
 #include <vector>
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "model/detail/py_mixture.hpp"
 #include "model/detail/py_numeric.hpp"
 #include "model/detail/walls.hpp"

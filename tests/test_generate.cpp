@@ -12,13 +12,13 @@
 
 #include "packing/detail/gen_pairs.hpp"
 #include "packing/detail/gen_relax.hpp"
-#include "packing/progress.hpp"
-#include "grid/error.hpp"
+#include "base/progress.hpp"
+#include "base/error.hpp"
 #include "packing/generate.hpp"
 #include "packing/rcp.hpp"
 #include "support.hpp"
 #include "io/packing_file.hpp"
-#include "experiment/packing_cache.hpp"
+#include "io/packing_cache.hpp"
 
 namespace hgrid {
 namespace {

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "cli_support.hpp"
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "io/packing_file.hpp"
 
 namespace hgrid::test {
@@ -223,7 +223,7 @@ TEST_F(Hostile, WorkThatCannotFitIsRefusedWithTheEstimate) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("GiB"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(path("g.h5")));
-  std::ofstream(path("big.toml")) << "name = \"big\"\n[packings]\nn = 2e9\nnu = 0.3\n";
+  std::ofstream(path("big.toml")) << "name = \"big\"\n[packings]\nn = 2000000000\nnu = 0.3\n";
   expect_refused("run " + path("big.toml") + " --results " + path("res"), "packings.n");
   EXPECT_FALSE(fs::exists(path("res/big.journal.jsonl")));
 }

@@ -6,10 +6,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "experiment/journal.hpp"
-#include "experiment/result_files.hpp"
-#include "experiment/runner.hpp"
-#include "grid/error.hpp"
+#include "scenes/journal.hpp"
+#include "scenes/result_files.hpp"
+#include "scenes/runner.hpp"
+#include "base/error.hpp"
 #include "cli_support.hpp"
 #include "mpi/comm.hpp"
 #include "mpi/sweep.hpp"

@@ -10,7 +10,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "io/lammps_export.hpp"
 #include "io/packing_file.hpp"
 #include "bench/lammps_run.hpp"

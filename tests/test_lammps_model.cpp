@@ -11,8 +11,8 @@
 #include <sstream>
 #include <string>
 
-#include "experiment/lammps_fit.hpp"
-#include "grid/error.hpp"
+#include "advice/lammps_fit.hpp"
+#include "base/error.hpp"
 #include "model/lammps_multi.hpp"
 #include "support.hpp"
 

@@ -7,7 +7,7 @@
 
 #include "model/cell_sizes.hpp"
 #include "model/detail/model_cost.hpp"
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "model/model.hpp"
 
 using namespace hgrid;

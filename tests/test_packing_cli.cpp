@@ -8,11 +8,11 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "packing/packing.hpp"
 #include "packing/packing_sizes.hpp"
 #include "cli_support.hpp"
-#include "grid/threads.hpp"
+#include "base/threads.hpp"
 #include "support.hpp"
 #include "io/packing_file.hpp"
 #include "io/provenance.hpp"

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "cli_support.hpp"
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "io/lammps_export.hpp"
 #include "io/packing_file.hpp"
 #include "io/particle_file.hpp"

@@ -10,8 +10,8 @@
 
 #include "bench/lammps_run.hpp"
 #include "cli_support.hpp"
-#include "experiment/recommend.hpp"
-#include "grid/error.hpp"
+#include "advice/recommend.hpp"
+#include "base/error.hpp"
 #include "io/lammps_export.hpp"
 #include "io/packing_file.hpp"
 #include "io/peer_settings.hpp"

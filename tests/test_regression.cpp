@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "model/distribution.hpp"
-#include "experiment/runner.hpp"
+#include "scenes/runner.hpp"
 #include "model/model.hpp"
 
 namespace hgrid {

@@ -4,8 +4,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "grid/error.hpp"
-#include "experiment/scene.hpp"
+#include "base/error.hpp"
+#include "scenes/scene.hpp"
 
 namespace hgrid {
 namespace {
@@ -70,6 +70,12 @@ TEST(Scene, RejectsBadInput) {
   expect_error_naming("name = \"t\"\n[packings]\nn = 1\nnu = nan\n", "packings.nu");
   expect_error_naming("name = \"t\"\n[packings]\nn = 0\nnu = 0.1\n", "packings.n");
   expect_error_naming("name = \"t\"\n[packings]\nnu = 0.1\n", "packings.n");
+  // Integers are integers: a float (even a whole one) is refused, naming the key.
+  expect_error_naming("name = \"t\"\n[packings]\nn = 1e5\nnu = 0.1\n", "packings.n");
+  expect_error_naming("name = \"t\"\n[packings]\nn = 10\nnu = 0.1\nseeds = [1, 2.0]\n", "packings.seeds");
+  expect_error_naming("name = \"t\"\n[packings]\nn = 10\nnu = 0.1\nseeds = -1\n", "packings.seeds");
+  expect_error_naming("name = \"t\"\n[packings]\nn = 10\nnu = 0.1\nd = 3.0\n", "packings.d");
+  expect_error_naming("name = \"t\"\n[packings]\nn = 10\nnu = 0.1\n[grid]\nlevels = 2.5\n", "grid.levels");
   expect_error_naming("name = \"t\"\n[packings]\nn = 1\nnu = 0.1\nplacement = \"lattice\"\n", "packings.placement");
   expect_error_naming("name = \"t\"\n[packings]\nn = 1\nnu = 0.1\nboundary = \"open\"\n", "boundary");
   expect_error_naming("name = \"t\"\n[packings]\nn = 1\nnu = 0.1\n[grid]\ncells = \"magic\"\n", "grid.cells");

@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "packing/detail/gen_stationary.hpp"
 #include "packing/generate.hpp"
 

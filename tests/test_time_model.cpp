@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_support.hpp"
-#include "experiment/calibrate.hpp"
-#include "experiment/calibration.hpp"
+#include "calibration/calibrate.hpp"
+#include "calibration/calibration.hpp"
 #include "grid/hgrid.hpp"
 #include "model/cell_sizes.hpp"
 #include "model/distribution.hpp"

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "cli_support.hpp"
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "io/packing_file.hpp"
 #include "io/viewer_files.hpp"
 #include "packing/grid_placement.hpp"

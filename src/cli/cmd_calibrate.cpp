@@ -11,8 +11,8 @@
 
 #include "cli/common.hpp"
 #include "io/atomic_file.hpp"
-#include "experiment/calibrate.hpp"
-#include "grid/error.hpp"
+#include "calibration/calibrate.hpp"
+#include "base/error.hpp"
 
 namespace hgrid::cli {
 namespace {

@@ -7,15 +7,15 @@
 #include <memory>
 
 #include "cli/common.hpp"
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "packing/generate.hpp"
 #include "io/lammps_export.hpp"
 #include "io/packing_file.hpp"
 #include "io/peer_settings.hpp"
 #include "io/viewer_files.hpp"
-#include "experiment/k_choice.hpp"
-#include "experiment/packing_cache.hpp"
-#include "experiment/recommend.hpp"
+#include "calibration/k_choice.hpp"
+#include "io/packing_cache.hpp"
+#include "advice/recommend.hpp"
 #include "packing/grid_placement.hpp"
 
 namespace hgrid::cli {

@@ -5,11 +5,11 @@
 #include <memory>
 
 #include "cli/common.hpp"
-#include "grid/error.hpp"
-#include "grid/threads.hpp"
+#include "base/error.hpp"
+#include "base/threads.hpp"
 #include "packing/generate.hpp"
 #include "io/packing_file.hpp"
-#include "experiment/packing_cache.hpp"
+#include "io/packing_cache.hpp"
 
 namespace hgrid::cli {
 

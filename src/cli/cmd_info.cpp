@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/common.hpp"
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "packing/generate.hpp"
 #include "packing/rcp.hpp"
 #include "io/packing_file.hpp"

@@ -1,5 +1,4 @@
-// `hgrid model` (the analytic cost model for one distribution) and
-// `hgrid modelfigs` (the data behind the paper's Figs. 2-10).
+// `hgrid model`: the analytic cost model for one distribution.
 #include <filesystem>
 #include <cmath>
 #include <iostream>
@@ -7,17 +6,12 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/common.hpp"
+#include "advice/model_answer.hpp"
 #include "io/atomic_file.hpp"
-#include "experiment/calibration.hpp"
-#include "model/cell_sizes.hpp"
-#include "model/excluded.hpp"
-#include "packing/packing_model.hpp"
+#include "calibration/calibration.hpp"
 #include "packing/generate.hpp"
-#include "packing/packing_sizes.hpp"
 #include "model/figures.hpp"
-#include "grid/error.hpp"
-#include "packing/packing.hpp"
-#include "io/packing_file.hpp"
+#include "base/error.hpp"
 #include "io/particle_file.hpp"
 
 namespace hgrid::cli {
@@ -52,64 +46,41 @@ void run_model(const ModelOptions& o) {
   const FileInputs in = file ? file_inputs(*file, o.radii_file, o.d_given || !file_has_d ? std::optional<int>(o.d) : std::nullopt,
                                            o.nu_given ? std::optional<double>(o.nu) : std::nullopt)
                              : FileInputs{o.d, o.nu, false};
-  ModelParams p;
-  p.d = in.d;
-  p.nu = in.nu;
-  p.K = resolve_K(o.K, "K");
-  p.search = parse_search(o.search);
-  validate(p);
-  const CellMethod method = parse_cell_method(o.cells);
+  ModelQuestion q;
+  q.params = ModelParams{in.d, in.nu, resolve_K(o.K, "K"), parse_search(o.search)};
+  q.cells = parse_cell_method(o.cells);
+  if (o.levels > 0) q.levels = o.levels;
+  q.q = o.q;
+  q.excluded = parse_placement(o.placement, "placement") == Placement::excluded;
+  q.excluded_sizes = o.excluded_sizes;
+  q.cost = parse_cost(o.cost);
+  q.n = o.n;
   const auto dist = make_distribution(o, file);
-  auto choice = choose_cell_sizes(*dist, p, method, o.levels > 0 ? std::optional<int>(o.levels) : std::nullopt, o.q);
-  std::optional<PredictedSeconds> seconds;  // --cost time: the time model's optimum replaces the count's
-  if (parse_cost(o.cost) == CostKind::time) {
-    if (method != CellMethod::optimal || o.levels > 0 || o.excluded_sizes)
-      throw InputError("cost", "'time' needs --cells optimal, without --levels or --excluded-sizes");
-    if (!(o.n >= 1 && o.n <= double(kMaxParticles))) throw InputError("n", "must be in [1, 2^31 - 1]");
-    const TimeOptimalSizes t = time_optimal_sizes(*dist, p, calibrated_time_model(p.d, "cost").coef, o.n);
-    choice.sizes = t.sizes;
-    choice.levels = static_cast<int>(t.sizes.size());
-    choice.model = evaluate_model(*dist, p, t.sizes);
-    seconds = t.seconds;
-  }
-  std::vector<double> sizes;  // in units of r_min
-  for (double s : choice.sizes) sizes.push_back(s / dist->r_min());
-  const bool excluded = parse_placement(o.placement, "placement") == Placement::excluded;
-  // The paper's model (random centres) chooses the sizes; with --placement
-  // excluded the excluded-volume model is evaluated for the same sizes.
-  if (o.excluded_sizes && !excluded) throw InputError("excluded-sizes", "needs --placement excluded");
-  ModelResult m = excluded ? evaluate_excluded_model_reported(*dist, p, choice.sizes) : choice.model;
-  const double T_excluded_paper_sizes = m.T_over_N;
-  int evaluations = 0;
-  if (o.excluded_sizes) {  // refine the paper's sizes under the excluded-volume model
-    const ExcludedSizes r = refine_sizes_excluded_reported(*dist, p, choice.sizes);
-    m = r.model;
-    evaluations = r.evaluations;
-    sizes.clear();
-    for (double s : r.sizes) sizes.push_back(s / dist->r_min());
-  }
+  const ModelAnswer a = answer_model(*dist, q);
+  const ModelResult& m = a.model;
   if (o.json) {
     nlohmann::json j;
-    j["levels"] = choice.levels;
-    j["sizes"] = sizes;
+    j["levels"] = a.levels;
+    j["sizes"] = a.sizes;
     j["T_over_N"] = m.T_over_N;
     j["T_cd_over_N"] = m.T_cd_over_N;
     j["T_ca_over_N"] = m.T_ca_over_N;
-    if (excluded) j["T_over_N_random"] = choice.model.T_over_N;
-    if (seconds) {
-      j["predicted_seconds_build"] = seconds->build;
-      j["predicted_seconds_query"] = seconds->query;
+    if (q.excluded) j["T_over_N_random"] = a.random.T_over_N;
+    if (a.seconds) {
+      j["predicted_seconds_build"] = a.seconds->build;
+      j["predicted_seconds_query"] = a.seconds->query;
       j["n"] = o.n;
     }
     if (o.excluded_sizes) {
-      j["T_over_N_excluded_paper_sizes"] = T_excluded_paper_sizes;
-      j["excluded_size_evaluations"] = evaluations;
+      j["T_over_N_excluded_paper_sizes"] = a.T_over_N_excluded_paper_sizes;
+      j["excluded_size_evaluations"] = a.excluded_size_evaluations;
     }
     j["T_cd_per_level"] = m.T_cd;
     j["P"] = m.P;
     j["m"] = m.m;
+    const ModelParams& p = q.params;
     j["params"] = {{"d", p.d}, {"nu", p.nu}, {"K", p.K}, {"search", to_string(p.search)},
-                   {"cells", to_string(method)}, {"q", o.q}, {"omega", dist->omega()},
+                   {"cells", to_string(q.cells)}, {"q", o.q}, {"omega", dist->omega()},
                    {"dist", o.radii_file.empty() ? o.dist : "empirical"},
                    {"levels_searched", o.levels == 0}, {"placement", o.placement}};
     if (file) j["params"]["nu_source"] = in.nu_from_box ? "box" : "given";
@@ -118,19 +89,18 @@ void run_model(const ModelOptions& o) {
     std::cout << j.dump(2) << "\n";
     return;
   }
-  std::printf("levels L = %d (%s)\nT/N = %.6f  (T_cd/N = %.6f, T_ca/N = %.6f, K = %g)%s\n", choice.levels,
-              o.levels == 0 ? "best L*" : "given", m.T_over_N, m.T_cd_over_N, m.T_ca_over_N, p.K,
-              excluded ? "  excluded-volume model" : "");
-  if (seconds)
+  std::printf("levels L = %d (%s)\nT/N = %.6f  (T_cd/N = %.6f, T_ca/N = %.6f, K = %g)%s\n", a.levels,
+              o.levels == 0 ? "best L*" : "given", m.T_over_N, m.T_cd_over_N, m.T_ca_over_N, q.params.K,
+              q.excluded ? "  excluded-volume model" : "");
+  if (a.seconds)
     std::printf("sizes minimise this machine's predicted seconds for N = %g: build %.4g s + query %.4g s\n", o.n,
-                seconds->build, seconds->query);
-  if (excluded && !o.excluded_sizes) std::printf("random-centre model for the same sizes: T/N = %.6f\n", choice.model.T_over_N);
+                a.seconds->build, a.seconds->query);
+  if (q.excluded && !o.excluded_sizes) std::printf("random-centre model for the same sizes: T/N = %.6f\n", a.random.T_over_N);
   if (o.excluded_sizes)
     std::printf("sizes refined under the excluded-volume model (%d evaluations); with the paper's sizes T/N = %.6f\n",
-                evaluations, T_excluded_paper_sizes);
+                a.excluded_size_evaluations, a.T_over_N_excluded_paper_sizes);
   std::printf("%5s %14s %12s %12s\n", "h", "s_h/r_min", "P_h", "m_h");
-  for (int h = 0; h < choice.levels; ++h)
-    std::printf("%5d %14.6g %12.6g %12.6g\n", h + 1, sizes[h], m.P[h], m.m[h]);
+  for (int h = 0; h < a.levels; ++h) std::printf("%5d %14.6g %12.6g %12.6g\n", h + 1, a.sizes[h], m.P[h], m.m[h]);
 }
 
 }  // namespace
@@ -170,28 +140,6 @@ void register_model_commands(CLI::App& app) {
     o->d_given = d_opt->count() > 0;
     o->nu_given = nu_opt->count() > 0;
     run_model(*o);
-  });
-
-  auto f = std::make_shared<std::string>("results/model");
-  auto only = std::make_shared<std::string>();
-  auto* figs = app.add_subcommand("modelfigs", "Write the data of the paper's Figs. 2-10 (and 13) as CSV");
-  figs->add_option("--out", *f, "output directory")->capture_default_str();
-  figs->add_option("--only", *only, "comma-separated figure numbers, e.g. 4,9 (default: all)");
-  auto time_model = std::make_shared<std::string>();
-  figs->add_option("--time-model", *time_model,
-                   "a calibration file (e.g. results/calibration.json) whose 3D time model adds the time-optimal "
-                   "sizes to Fig. 13");
-  figs->callback([f, only, time_model] {
-    std::optional<TimeCoefficients> time;
-    if (!time_model->empty()) {
-      const Calibration c = load_calibration(*time_model);
-      if (!c.time_model(3))
-        throw InputError("time-model", "'" + *time_model + "' has no 3D time model (run `hgrid calibrate`)");
-      time = c.time_model(3)->coef;
-    }
-    std::filesystem::create_directories(*f);
-    write_model_figures([&](const std::string& name, const std::string& csv) { write_text_atomically(*f + "/" + name, csv); },
-                        *only, std::cerr, time);
   });
 }
 

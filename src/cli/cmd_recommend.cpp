@@ -8,11 +8,11 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/common.hpp"
-#include "experiment/calibration.hpp"
-#include "experiment/k_choice.hpp"
-#include "experiment/recommend.hpp"
-#include "experiment/recommend_json.hpp"
-#include "grid/error.hpp"
+#include "calibration/calibration.hpp"
+#include "calibration/k_choice.hpp"
+#include "advice/recommend.hpp"
+#include "advice/recommend_json.hpp"
+#include "base/error.hpp"
 #include "io/particle_file.hpp"
 #include "io/peer_settings.hpp"
 
@@ -118,29 +118,6 @@ void run_recommend(const RecommendOptions& o) {
 }
 
 }  // namespace
-
-FileInputs file_inputs(const ParticleSet& s, const std::string& file, std::optional<int> d, std::optional<double> nu) {
-  FileInputs in;
-  if (d) {
-    if (*d != 2 && *d != 3) throw InputError("d", "must be 2 or 3 (got " + std::to_string(*d) + ")");
-    if (s.d == 2 || s.d == 3) check_file_dimension(s.d, d, file);
-    in.d = *d;
-  } else if (s.d == 2 || s.d == 3) {
-    in.d = s.d;
-  } else {
-    throw InputError("d", file + " holds radii only: give --d 2 or --d 3");
-  }
-  if (nu) {
-    if (!(std::isfinite(*nu) && *nu > 0)) throw InputError("nu", "must be a finite number > 0 (got " + format_number(*nu) + ")");
-    in.nu = *nu;
-  } else if (s.box && s.d == in.d) {
-    in.nu = s.packing_fraction();
-    in.nu_from_box = true;
-  } else {
-    throw InputError("nu", file + " has no box: give --nu, the packing fraction of your system (e.g. --nu 0.6)");
-  }
-  return in;
-}
 
 void register_recommend_commands(CLI::App& app) {
   auto o = std::make_shared<RecommendOptions>();

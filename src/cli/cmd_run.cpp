@@ -4,9 +4,9 @@
 #include <thread>
 
 #include "cli/common.hpp"
-#include "experiment/dpm_scene.hpp"
-#include "grid/error.hpp"
-#include "experiment/runner.hpp"
+#include "scenes/dpm_scene.hpp"
+#include "base/error.hpp"
+#include "scenes/runner.hpp"
 #include "mpi/comm.hpp"
 #include "mpi/sweep.hpp"
 

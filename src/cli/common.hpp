@@ -9,7 +9,7 @@
 #include <string>
 
 #include "grid/params.hpp"
-#include "grid/threads.hpp"
+#include "base/threads.hpp"
 #include "io/particle_file.hpp"
 
 namespace hgrid::cli {
@@ -39,8 +39,11 @@ class PairWriter {
 };
 
 /// Each subcommand file provides one of these; main.cpp calls them all.
-void register_grid_commands(CLI::App& app);   // pairs, count      (cmd_grid.cpp)
-void register_model_commands(CLI::App& app);  // model, modelfigs  (cmd_model.cpp)
+void register_pairs_commands(CLI::App& app);  // pairs            (cmd_pairs.cpp)
+void register_count_commands(CLI::App& app);  // count            (cmd_count.cpp)
+void register_model_commands(CLI::App& app);  // model             (cmd_model.cpp)
+void register_modelfigs_commands(CLI::App& app);  // modelfigs     (cmd_modelfigs.cpp)
+void register_fields_commands(CLI::App& app);  // fields           (cmd_fields.cpp)
 void register_generate_commands(CLI::App& app);  // generate, info (cmd_generate.cpp)
 void register_run_commands(CLI::App& app);       // run           (cmd_run.cpp)
 void register_export_commands(CLI::App& app);    // export        (cmd_export.cpp)
@@ -54,15 +57,6 @@ inline constexpr const char* kKHelp =
 /// Exit status for bad input (file, parameter): one line on stderr, status 2.
 inline constexpr int kBadInput = 2;
 
-/// d and nu for the particles `s` read from `file`: the options when given,
-/// else the file's (its columns, its box); an InputError naming d or nu, and
-/// the option to give, when neither has it (cmd_recommend.cpp).
-struct FileInputs {
-  int d = 3;
-  double nu = 0;
-  bool nu_from_box = false;
-};
-FileInputs file_inputs(const ParticleSet& s, const std::string& file, std::optional<int> d, std::optional<double> nu);
 
 /// The --threads option of a command that searches (default 0: all cores,
 /// OMP_NUM_THREADS when set); checked by hgrid::check_threads (grid/threads.hpp).
@@ -71,9 +65,6 @@ void add_threads_option(CLI::App* sub, int& threads);
 /// of a file that holds several (LAMMPS dump, MercuryDPM .data), from the
 /// first (0-based) or from the end when negative; default: the last.
 void add_frame_option(CLI::App* sub, std::optional<std::int64_t>& frame);
-/// --d with a particle file: the dimension the file must have; InputError
-/// naming d when the file's (2D when all its z are equal) differs.
-void check_file_dimension(int file_d, std::optional<int> d, const std::string& file);
 
 /// The --decompose forms of pairs and count (cmd_decompose.cpp): the search
 /// split over the ranks of an MPI run; rank 0 prints.

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "cli/common.hpp"
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "io/provenance.hpp"
 #include "mpi/comm.hpp"
 
@@ -26,14 +26,6 @@ void add_frame_option(CLI::App* sub, std::optional<std::int64_t>& frame) {
   sub->add_option("--frame", frame,
                   "snapshot of a file that holds several (LAMMPS dump, MercuryDPM .data): K from the first "
                   "(0, 1, ...) or from the end (-1, -2, ...); default: the last");
-}
-
-void check_file_dimension(int file_d, std::optional<int> d, const std::string& file) {
-  if (!d) return;
-  if (*d != 2 && *d != 3) throw InputError("d", "must be 2 or 3 (got " + std::to_string(*d) + ")");
-  if (file_d != *d)
-    throw InputError("d", "--d " + std::to_string(*d) + " disagrees with " + file + ", which is " +
-                              std::to_string(file_d) + "D (a LAMMPS file is 2D when all its z are equal)");
 }
 
 std::vector<double> parse_list(const std::string& text, const std::string& field) {
@@ -111,8 +103,11 @@ int main(int argc, char** argv) {
                                         hgrid::compiler_id() + ")");
   app.require_subcommand(1);
   app.fallthrough(false);
-  hgrid::cli::register_grid_commands(app);
+  hgrid::cli::register_pairs_commands(app);
+  hgrid::cli::register_count_commands(app);
   hgrid::cli::register_model_commands(app);
+  hgrid::cli::register_modelfigs_commands(app);
+  hgrid::cli::register_fields_commands(app);
   hgrid::cli::register_generate_commands(app);
   hgrid::cli::register_run_commands(app);
   hgrid::cli::register_export_commands(app);

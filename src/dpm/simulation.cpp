@@ -5,8 +5,8 @@
 #include <string>
 
 #include "dpm/engine.hpp"
-#include "grid/error.hpp"
-#include "grid/threads.hpp"
+#include "base/error.hpp"
+#include "base/threads.hpp"
 
 namespace hgrid::dpm {
 

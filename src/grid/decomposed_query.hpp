@@ -11,7 +11,7 @@
 
 #include "grid/decomposition.hpp"
 #include "grid/hgrid.hpp"
-#include "grid/threads.hpp"
+#include "base/threads.hpp"
 
 namespace hgrid {
 

@@ -19,7 +19,7 @@
 #include <limits>
 #include <vector>
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "grid/geometry.hpp"
 
 namespace hgrid {

@@ -2,7 +2,7 @@
 #pragma once
 #include <type_traits>
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "grid/geometry.hpp"
 
 namespace hgrid {

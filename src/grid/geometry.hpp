@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 
 namespace hgrid {
 

@@ -15,10 +15,10 @@
 #include "grid/counters.hpp"
 #include "grid/detail/levels.hpp"
 #include "grid/detail/stencil.hpp"
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "grid/geometry.hpp"
 #include "grid/params.hpp"
-#include "grid/threads.hpp"
+#include "base/threads.hpp"
 #include "grid/uninit_vector.hpp"
 
 namespace hgrid {

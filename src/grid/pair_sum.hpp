@@ -23,7 +23,7 @@
 #include "grid/detail/parallel.hpp"
 #include "grid/detail/radix.hpp"
 #include "grid/pair_keys.hpp"
-#include "grid/threads.hpp"
+#include "base/threads.hpp"
 
 namespace hgrid {
 

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <system_error>
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 
 namespace hgrid {
 

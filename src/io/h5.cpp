@@ -2,7 +2,7 @@
 
 #include <cstring>
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "io/atomic_file.hpp"
 
 namespace hgrid::detail {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 
 namespace hgrid::detail {
 

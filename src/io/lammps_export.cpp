@@ -8,7 +8,7 @@
 #include <sstream>
 #include <unistd.h>
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "io/provenance.hpp"
 #include "io/atomic_file.hpp"
 #include "io/peer_settings.hpp"

@@ -16,7 +16,7 @@
 #include <string>
 
 #include "io/h5.hpp"
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "io/packing_file.hpp"
 #include "io/detail/text_lines.hpp"
 #include "io/particle_file.hpp"

@@ -1,11 +1,12 @@
 // Particle files of every supported format: detection and the common type.
 #include "io/particle_file.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "io/detail/lammps_reader.hpp"
 #include "io/detail/mercury_reader.hpp"
 #include "io/detail/table_reader.hpp"
@@ -120,6 +121,37 @@ std::string boundary_description(const ParticleSet& s) {
   if (s.mixed_boundary) return "mixed (periodic and not)";
   if (!s.boundary) return "periodic (not in the file: assumed)";
   return to_string(*s.boundary);
+}
+
+void check_file_dimension(int file_d, std::optional<int> d, const std::string& file) {
+  if (!d) return;
+  if (*d != 2 && *d != 3) throw InputError("d", "must be 2 or 3 (got " + std::to_string(*d) + ")");
+  if (file_d != *d)
+    throw InputError("d", "--d " + std::to_string(*d) + " disagrees with " + file + ", which is " +
+                              std::to_string(file_d) + "D (a LAMMPS file is 2D when all its z are equal)");
+}
+
+FileInputs file_inputs(const ParticleSet& s, const std::string& file, std::optional<int> d, std::optional<double> nu) {
+  FileInputs in;
+  if (d) {
+    if (*d != 2 && *d != 3) throw InputError("d", "must be 2 or 3 (got " + std::to_string(*d) + ")");
+    if (s.d == 2 || s.d == 3) check_file_dimension(s.d, d, file);
+    in.d = *d;
+  } else if (s.d == 2 || s.d == 3) {
+    in.d = s.d;
+  } else {
+    throw InputError("d", file + " holds radii only: give --d 2 or --d 3");
+  }
+  if (nu) {
+    if (!(std::isfinite(*nu) && *nu > 0)) throw InputError("nu", "must be a finite number > 0 (got " + format_number(*nu) + ")");
+    in.nu = *nu;
+  } else if (s.box && s.d == in.d) {
+    in.nu = s.packing_fraction();
+    in.nu_from_box = true;
+  } else {
+    throw InputError("nu", file + " has no box: give --nu, the packing fraction of your system (e.g. --nu 0.6)");
+  }
+  return in;
 }
 
 }  // namespace hgrid

@@ -71,4 +71,18 @@ std::string boundary_description(const Packing& p);
 inline constexpr const char* kBoundarySourceAttr = "boundary_source";
 inline constexpr const char* kBoundaryAssumed = "assumed: not in the file";
 
+/// --d with a particle file: the dimension the file must have; InputError
+/// naming d when the file's (2D when all its z are equal) differs.
+void check_file_dimension(int file_d, std::optional<int> d, const std::string& file);
+
+/// d and nu for the particles `s` read from `file`: the options when given,
+/// else the file's (its columns, its box); an InputError naming d or nu, and
+/// the option to give, when neither has it.
+struct FileInputs {
+  int d = 3;
+  double nu = 0;
+  bool nu_from_box = false;
+};
+FileInputs file_inputs(const ParticleSet& s, const std::string& file, std::optional<int> d, std::optional<double> nu);
+
 }  // namespace hgrid

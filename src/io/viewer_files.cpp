@@ -1,6 +1,6 @@
 #include "io/viewer_files.hpp"
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/peer_settings.hpp"
 

@@ -1,6 +1,8 @@
 #include "measure/fields.hpp"
 
 #include <algorithm>
+#include <cstdarg>
+#include <cstdio>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -103,6 +105,58 @@ std::string measurement_json(const Measurement& m, std::span<const std::string_v
       j[f.name] = to_json(f.value(m));
   for (const auto& n : names) (void)measurement_field(n);  // every name asked for exists
   return j.dump(indent);
+}
+
+namespace {
+void append(std::string& out, const char* fmt, ...) __attribute__((format(printf, 2, 3)));
+void append(std::string& out, const char* fmt, ...) {
+  char buf[512];
+  va_list ap;
+  va_start(ap, fmt);
+  std::vsnprintf(buf, sizeof buf, fmt, ap);
+  va_end(ap);
+  out += buf;
+}
+}  // namespace
+
+std::string measurement_text(const Measurement& m) {
+  std::string s;
+  append(s, "n = %llu, d = %d, %s%s, nu = %.6g, search %s, K = %g\n", (unsigned long long)m.n, m.d,
+         to_string(m.boundary), m.boundary_assumed ? " (not in the file: assumed)" : "", m.nu_achieved,
+         to_string(m.search), m.K);
+  const bool ex = !m.model_excluded_checks_by_level.empty();
+  const auto L = static_cast<std::size_t>(m.counts.levels);
+  const auto row_sum = [L](const auto& v, std::size_t h) {
+    double sum = 0;
+    for (std::size_t k = 0; k < L && h * L + k < v.size(); ++k) sum += static_cast<double>(v[h * L + k]);
+    return sum;
+  };
+  // The models' columns: expected narrow-phase checks of the level's particles.
+  append(s, "%5s %14s %12s %16s %20s %14s %16s\n", "level", "size", "particles", "cell_accesses",
+         "narrow_phase_checks", "model_checks", "excluded_checks");
+  for (std::size_t h = 0; h < L; ++h)
+    append(s, "%5zu %14.6g %12llu %16.0f %20.0f %14.6g %16s\n", h + 1, m.sizes[h],
+           (unsigned long long)m.counts.particles_per_level[h], row_sum(m.counts.accesses_by_level, h),
+           row_sum(m.counts.checks_by_level, h), row_sum(m.model_checks_by_level, h),
+           ex ? std::to_string(row_sum(m.model_excluded_checks_by_level, h)).c_str() : "-");
+  append(s, "total: %llu cell accesses, %llu narrow-phase checks, %llu contacts, T/N = %.6g\n",
+         (unsigned long long)m.counts.cell_accesses, (unsigned long long)m.counts.narrow_phase_checks,
+         (unsigned long long)m.counts.contacts, m.T_over_N);
+  if (std::isfinite(m.model_T_over_N)) {
+    append(s, "model T/N = %.6g (random centres)", m.model_T_over_N);
+    if (ex)
+      append(s, ", %.6g (excluded volume)\n", m.model_excluded_T_over_N);
+    else
+      append(s, "; excluded-volume model: %s\n", m.model_excluded_skipped.empty() ? "not asked" : m.model_excluded_skipped.c_str());
+  }
+  if (m.repeats > 0)
+    append(s, "wall time, fastest of %d uncounted runs on %d threads: query %.6g s, build %.6g s\n", m.repeats,
+           m.threads, m.seconds_query_best, m.seconds_build_best);
+  if (!m.time_model.empty())
+    append(s, "time model (%s), one thread: query %.6g s, build %.6g s (from the counts: %.6g s, %.6g s)\n",
+           m.time_model.c_str(), m.predicted_seconds_query_one_thread, m.predicted_seconds_build_one_thread,
+           m.predicted_seconds_query_one_thread_from_counts, m.predicted_seconds_build_one_thread_from_counts);
+  return s;
 }
 
 }  // namespace hgrid

@@ -36,4 +36,9 @@ const MeasurementField& measurement_field(std::string_view name);
 /// order; NaN and empty text as null. indent < 0: one line.
 std::string measurement_json(const Measurement& m, std::span<const std::string_view> names = {}, int indent = 2);
 
+/// The text form (`hgrid count`): the packing and grid in one line, a table
+/// per level (its particles, accesses, checks and the models' expected
+/// checks), the totals, and the timings and time model when measured.
+std::string measurement_text(const Measurement& m);
+
 }  // namespace hgrid

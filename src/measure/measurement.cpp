@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "grid/dispatch.hpp"
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "grid/hgrid.hpp"
 #include "io/particle_file.hpp"
 #include "model/cell_sizes.hpp"

@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "model/detail/model_sizes.hpp"
-#include "grid/error.hpp"
+#include "base/error.hpp"
 
 namespace hgrid {
 

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "model/detail/dist_math.hpp"
-#include "grid/error.hpp"
+#include "base/error.hpp"
 
 namespace hgrid {
 

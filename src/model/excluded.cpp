@@ -8,7 +8,7 @@
 #include <numbers>
 #include <string>
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "grid/geometry.hpp"
 #include "model/detail/py_mixture.hpp"
 #include "model/detail/py_numeric.hpp"

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "model/cell_sizes.hpp"
-#include "grid/error.hpp"
+#include "base/error.hpp"
 
 namespace hgrid {
 

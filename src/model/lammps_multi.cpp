@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "model/detail/coordinate_search.hpp"
 
 namespace hgrid {

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "model/detail/model_cost.hpp"
-#include "grid/error.hpp"
+#include "base/error.hpp"
 
 namespace hgrid {
 

@@ -2,7 +2,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "mpi/comm.hpp"
 
 namespace hgrid::mpi {

@@ -6,9 +6,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "experiment/journal.hpp"
-#include "experiment/result_files.hpp"
-#include "grid/error.hpp"
+#include "scenes/journal.hpp"
+#include "scenes/result_files.hpp"
+#include "base/error.hpp"
 #include "io/atomic_file.hpp"
 #include "mpi/comm.hpp"
 

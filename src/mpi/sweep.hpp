@@ -4,7 +4,7 @@
 #pragma once
 #include <vector>
 
-#include "experiment/runner.hpp"
+#include "scenes/runner.hpp"
 
 namespace hgrid::mpi {
 

@@ -10,14 +10,14 @@
 #include <optional>
 #include <string>
 
-#include "grid/threads.hpp"
+#include "base/threads.hpp"
 #include "packing/detail/gen_common.hpp"
 #include "packing/detail/gen_equilibrate.hpp"
 #include "packing/detail/gen_relax.hpp"
 #include "packing/detail/gen_rsa.hpp"
 #include "packing/detail/gen_stationary.hpp"
 #include "grid/dispatch.hpp"
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "grid/hgrid.hpp"
 #include "packing/packing_sizes.hpp"
 #include "packing/rcp.hpp"

@@ -9,7 +9,7 @@
 #include <fstream>
 #include <string>
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 
 namespace hgrid {
 

@@ -1,9 +1,9 @@
 #include "packing/packing_model.hpp"
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "model/distribution.hpp"
 #include "model/excluded.hpp"
-#include "packing/progress.hpp"
+#include "base/progress.hpp"
 
 namespace hgrid {
 

@@ -6,8 +6,8 @@
 #include "model/cell_sizes.hpp"
 #include "model/distribution.hpp"
 #include "model/excluded.hpp"
-#include "packing/progress.hpp"
-#include "grid/error.hpp"
+#include "base/progress.hpp"
+#include "base/error.hpp"
 #include "grid/geometry.hpp"
 
 namespace hgrid {

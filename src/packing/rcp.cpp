@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 
 namespace hgrid {
 

@@ -5,7 +5,7 @@
 #include <sstream>
 #include <string>
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "io/packing_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -13,7 +13,7 @@
 #include <fstream>
 #include <string>
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "io/packing_file.hpp"
 
 constexpr double kFuzzReadSeconds = 0.05;

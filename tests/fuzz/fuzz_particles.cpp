@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "io/particle_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

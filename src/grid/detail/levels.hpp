@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "grid/geometry.hpp"
 
 namespace hgrid::detail {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "io/detail/text_lines.hpp"
 
 namespace hgrid::detail {

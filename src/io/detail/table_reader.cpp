@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <optional>
 
-#include "grid/error.hpp"
+#include "base/error.hpp"
 #include "io/detail/text_lines.hpp"
 
 namespace hgrid::detail {

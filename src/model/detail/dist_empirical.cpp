@@ -4,7 +4,7 @@
 #include <string>
 
 #include "model/distribution.hpp"
-#include "grid/error.hpp"
+#include "base/error.hpp"
 
 namespace hgrid {
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "model/distribution.hpp"
-#include "grid/error.hpp"
+#include "base/error.hpp"
 
 namespace hgrid {
 

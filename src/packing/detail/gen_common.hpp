@@ -7,7 +7,7 @@
 #include <string>
 
 #include "grid/geometry.hpp"
-#include "packing/progress.hpp"
+#include "base/progress.hpp"
 
 namespace hgrid::detail {
 

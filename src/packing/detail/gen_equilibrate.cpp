@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "grid/threads.hpp"
+#include "base/threads.hpp"
 #include "packing/detail/gen_insert_grid.hpp"
 
 namespace hgrid::detail {

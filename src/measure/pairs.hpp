@@ -1,0 +1,38 @@
+// Every overlapping pair of a packing, found by its grid or by brute force,
+// for any dimension and boundary: what `hgrid pairs` and Python's `pairs`
+// print or return.
+#pragma once
+#include <cstdint>
+#include <span>
+
+#include "grid/brute_force.hpp"
+#include "grid/dispatch.hpp"
+#include "grid/hgrid.hpp"
+#include "packing/packing.hpp"
+
+namespace hgrid {
+
+/// f(thread, i, j) for every overlapping pair i < j of p, found by the grid
+/// of g on g.threads threads (each pair once, in no particular order).
+template <class F>
+void for_each_packing_pair(const Packing& p, const GridParams& g, F&& f) {
+  dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
+    constexpr int D = decltype(dim)::value;
+    const auto spheres = p.spheres<D>();
+    const HGrid<D, decltype(bnd)::value> grid(spheres, p.extent<D>(), g);
+    grid.for_each_pair(f);
+  });
+}
+
+/// The same pairs by the O(N^2) brute force on one thread (thread 0).
+template <class F>
+void for_each_packing_pair_brute(const Packing& p, F&& f) {
+  dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
+    constexpr int D = decltype(dim)::value;
+    const auto spheres = p.spheres<D>();
+    brute_force_pairs<D, decltype(bnd)::value>(std::span<const Sphere<D>>(spheres), p.extent<D>(),
+                                                [&](std::uint32_t i, std::uint32_t j) { f(0, i, j); });
+  });
+}
+
+}  // namespace hgrid

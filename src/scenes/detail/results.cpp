@@ -1,0 +1,302 @@
+#include "scenes/detail/results.hpp"
+
+#include <cmath>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include "grid/params.hpp"
+#include "io/h5.hpp"
+#include "packing/generate.hpp"
+#include "packing/packing.hpp"
+#include "io/provenance.hpp"
+#include "io/atomic_file.hpp"
+#include "measure/fields.hpp"
+
+namespace hgrid {
+namespace {
+
+std::string utc_now() {
+  std::time_t t = std::time(nullptr);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+  return buf;
+}
+
+}  // namespace
+
+namespace {
+/// The measurement's fields a scene records (measure/fields.hpp names them).
+constexpr std::string_view kMeasuredFields[] = {
+    "n", "search", "levels", "sizes", "nu_achieved", "cell_accesses", "narrow_phase_checks", "contacts",
+    "particles_per_level", "accesses_by_level", "checks_by_level", "T_over_N", "T_cd_over_N", "T_ca_over_N",
+    "model_T_over_N", "model_T_cd_over_N", "model_T_ca_over_N", "model_excluded_T_over_N",
+    "model_excluded_T_cd_over_N", "model_excluded_T_ca_over_N", "share_multi_lowest", "seconds_build",
+    "seconds_query"};
+}  // namespace
+
+nlohmann::json detail::result_to_json(const PointResult& r) {
+  const PackingSpec& s = r.point.packing;
+  nlohmann::json j = nlohmann::json::parse(measurement_json(r.m, kMeasuredFields, -1));
+  j.update({{"d", s.d},
+            {"nu", s.nu},
+            {"dist", s.dist},
+            {"alpha", s.alpha},
+            {"omega", s.omega},
+            {"sigma", s.sigma},
+            {"boundary", to_string(s.boundary)},
+            {"placement", to_string(s.placement)},
+            {"method", to_string(s.method)},
+            {"seed", s.seed},
+            {"equilibrate", s.equilibrate},
+            {"sweeps", s.sweeps},
+            {"stop", to_string(s.stop)},
+            {"equilibration_sweeps", r.equilibration_sweeps},
+            {"seconds_packing", r.seconds_packing},
+            {"seconds_sizes", r.seconds_sizes}});
+  return j;
+}
+
+namespace {
+
+// Typed reads of a journal line: every value is checked like any input
+// (type, sign, range), never trusted as written.
+const nlohmann::json& field(const nlohmann::json& j, const char* key) {
+  if (!j.is_object() || !j.contains(key)) throw InputError(key, "missing");
+  return j.at(key);
+}
+std::uint64_t count_of(const nlohmann::json& j, const char* key) {
+  const auto& v = field(j, key);
+  if (!v.is_number_unsigned()) throw InputError(key, "must be a whole number >= 0");
+  return v.get<std::uint64_t>();
+}
+double finite_of(const nlohmann::json& j, const char* key) {
+  const auto& v = field(j, key);
+  if (!v.is_number() || !std::isfinite(v.get<double>())) throw InputError(key, "must be a finite number");
+  return v.get<double>();
+}
+double optional_of(const nlohmann::json& j, const char* key) {  // null: not recorded
+  return field(j, key).is_null() ? std::nan("") : finite_of(j, key);
+}
+std::string text_of(const nlohmann::json& j, const char* key) {
+  const auto& v = field(j, key);
+  if (!v.is_string()) throw InputError(key, "must be a string");
+  return v.get<std::string>();
+}
+/// A list of at most max_size counts (L per level, or L x L by level pairs).
+std::vector<std::uint64_t> counts_of(const nlohmann::json& j, const char* key, std::size_t max_size) {
+  const auto& v = field(j, key);
+  if (!v.is_array() || v.size() > max_size) throw InputError(key, "must be a list of counts");
+  std::vector<std::uint64_t> out;
+  for (const auto& e : v) {
+    if (!e.is_number_unsigned()) throw InputError(key, "must be a list of whole numbers >= 0");
+    out.push_back(e.get<std::uint64_t>());
+  }
+  return out;
+}
+
+}  // namespace
+
+PointResult detail::result_from_json(const nlohmann::json& j) {
+  PointResult r;
+  PackingSpec& s = r.point.packing;
+  s.d = static_cast<int>(count_of(j, "d"));
+  s.n = count_of(j, "n");
+  s.nu = finite_of(j, "nu");
+  s.dist = text_of(j, "dist");
+  s.alpha = finite_of(j, "alpha");
+  s.omega = finite_of(j, "omega");
+  s.sigma = finite_of(j, "sigma");
+  s.boundary = parse_boundary(text_of(j, "boundary"));
+  s.placement = parse_placement(text_of(j, "placement"));
+  // Journals written before the placement method was a parameter have none.
+  if (j.contains("method")) s.method = parse_excluded_method(text_of(j, "method"));
+  s.seed = count_of(j, "seed");
+  if (!field(j, "equilibrate").is_boolean()) throw InputError("equilibrate", "must be true or false");
+  s.equilibrate = field(j, "equilibrate").get<bool>();
+  // Journals written before the Monte Carlo sweeps were a parameter have none.
+  if (j.contains("sweeps")) {
+    const auto sweeps = count_of(j, "sweeps");
+    if (sweeps < 1 || sweeps > static_cast<std::uint64_t>(kMaxEquilibrationSweeps))
+      throw InputError("sweeps", "must be in [1, " + std::to_string(kMaxEquilibrationSweeps) + "]");
+    s.sweeps = static_cast<int>(sweeps);
+  }
+  // Journals written before an equilibration could stop when stationary have
+  // neither: all its sweeps were run.
+  if (j.contains("stop")) s.stop = parse_equilibration_stop(text_of(j, "stop"));
+  if (j.contains("equilibration_sweeps")) {
+    r.equilibration_sweeps = count_of(j, "equilibration_sweeps");
+    if (r.equilibration_sweeps > (s.equilibrate ? static_cast<std::uint64_t>(s.sweeps) : 0))
+      throw InputError("equilibration_sweeps", "must be at most the sweeps asked (0 without equilibrate)");
+  } else {
+    r.equilibration_sweeps = s.equilibrate ? static_cast<std::uint64_t>(s.sweeps) : 0;
+  }
+  r.point.search = parse_search(text_of(j, "search"));
+  Measurement& m = r.m;
+  m.d = s.d;
+  m.boundary = s.boundary;
+  m.search = r.point.search;
+  m.n = count_of(j, "n");
+  m.nu_achieved = finite_of(j, "nu_achieved");
+  const auto& sizes = field(j, "sizes");
+  if (!sizes.is_array()) throw InputError("sizes", "must be a list of numbers");
+  for (const auto& e : sizes) {
+    if (!e.is_number() || !std::isfinite(e.get<double>())) throw InputError("sizes", "must be finite numbers");
+    m.sizes.push_back(e.get<double>());
+  }
+  Counters& c = m.counts;
+  c.levels = static_cast<int>(count_of(j, "levels"));
+  c.cell_accesses = count_of(j, "cell_accesses");
+  c.narrow_phase_checks = count_of(j, "narrow_phase_checks");
+  c.contacts = count_of(j, "contacts");
+  constexpr auto kLevels = static_cast<std::size_t>(kMaxLevels);
+  c.particles_per_level = counts_of(j, "particles_per_level", kLevels);
+  c.accesses_by_level = counts_of(j, "accesses_by_level", kLevels * kLevels);
+  c.checks_by_level = counts_of(j, "checks_by_level", kLevels * kLevels);
+  m.T_over_N = finite_of(j, "T_over_N");
+  m.T_cd_over_N = finite_of(j, "T_cd_over_N");
+  m.T_ca_over_N = finite_of(j, "T_ca_over_N");
+  m.model_T_over_N = optional_of(j, "model_T_over_N");
+  m.model_T_cd_over_N = optional_of(j, "model_T_cd_over_N");
+  m.model_T_ca_over_N = optional_of(j, "model_T_ca_over_N");
+  // Absent in journals written before the excluded-volume model: not recorded.
+  for (auto [key, dst] : {std::pair{"model_excluded_T_over_N", &m.model_excluded_T_over_N},
+                          std::pair{"model_excluded_T_cd_over_N", &m.model_excluded_T_cd_over_N},
+                          std::pair{"model_excluded_T_ca_over_N", &m.model_excluded_T_ca_over_N}})
+    *dst = j.is_object() && j.contains(key) ? optional_of(j, key) : std::nan("");
+  m.share_multi_lowest = optional_of(j, "share_multi_lowest");
+  r.seconds_packing = finite_of(j, "seconds_packing");
+  r.seconds_sizes = finite_of(j, "seconds_sizes");
+  m.seconds_build = finite_of(j, "seconds_build");
+  m.seconds_query = finite_of(j, "seconds_query");
+  return r;
+}
+
+void detail::check_result(const PointResult& r, double K) {
+  const Measurement& m = r.m;
+  const Counters& c = m.counts;
+  const auto L = static_cast<std::size_t>(c.levels);
+  // Sizes and particles per level; accesses and checks per pair of levels
+  // (particle's level x level searched, Counters).
+  if (c.levels < 1 || m.sizes.size() != L || c.particles_per_level.size() != L ||
+      c.accesses_by_level.size() != L * L || c.checks_by_level.size() != L * L)
+    throw InputError("levels", "the per-level lists do not have one entry per level (L x L by level pairs)");
+  std::uint64_t n = 0, acc = 0, chk = 0;
+  for (std::uint64_t v : c.particles_per_level) n += v;
+  for (std::uint64_t v : c.accesses_by_level) acc += v;
+  for (std::uint64_t v : c.checks_by_level) chk += v;
+  if (n != m.n || m.n != r.point.packing.n) throw InputError("particles_per_level", "does not add up to n");
+  if (acc != c.cell_accesses) throw InputError("accesses_by_level", "does not add up to cell_accesses");
+  if (chk != c.narrow_phase_checks) throw InputError("checks_by_level", "does not add up to narrow_phase_checks");
+  if (c.contacts > c.narrow_phase_checks) throw InputError("contacts", "more contacts than checks");
+  if (m.T_over_N != c.cost(K) / static_cast<double>(m.n)) throw InputError("T_over_N", "is not (checks + K accesses) / n");
+}
+
+namespace {
+
+/// Columns of the CSV summary (also the 1-D datasets of the HDF5 file).
+const char* const kNumericColumns[] = {"d", "n", "nu", "nu_achieved", "alpha", "omega", "sigma", "seed",
+                                       "equilibration_sweeps", "levels",
+                                       "cell_accesses", "narrow_phase_checks", "contacts", "T_over_N", "T_cd_over_N",
+                                       "T_ca_over_N", "model_T_over_N", "model_T_cd_over_N", "model_T_ca_over_N",
+                                       "model_excluded_T_over_N", "model_excluded_T_cd_over_N",
+                                       "model_excluded_T_ca_over_N",
+                                       "share_multi_lowest", "seconds_packing", "seconds_sizes", "seconds_build",
+                                       "seconds_query"};
+const char* const kTextColumns[] = {"dist", "boundary", "placement", "method", "search"};
+
+void write_csv(const std::string& path, const Scene& scene, const std::vector<nlohmann::json>& rows) {
+  write_stream_atomically(path, [&](std::ostream& out) {
+    out << "# scene=" << scene.name << " scale=" << scene.scale << " " << provenance_line() << "\n";
+    std::string header;
+    for (const char* c : kTextColumns) header += std::string(header.empty() ? "" : ",") + c;
+    for (const char* c : kNumericColumns) header += std::string(",") + c;
+    out << header << ",sizes\n";
+    out.precision(17);
+    for (const auto& j : rows) {
+      std::string line;
+      for (const char* c : kTextColumns) {  // appended piece by piece: GCC 12 warns (-Wrestrict) on "," + string
+        if (!line.empty()) line += ',';
+        line += j.at(c).get<std::string>();
+      }
+      out << line;
+      for (const char* c : kNumericColumns) {
+        out << ",";
+        if (j.at(c).is_null()) out << "NaN";
+        else out << j.at(c).get<double>();
+      }
+      out << ",";
+      bool first = true;
+      for (double s : j.at("sizes")) out << (first ? "" : ";") << s, first = false;
+      out << "\n";
+    }
+  });
+}
+
+}  // namespace
+
+std::string result_json_line(const PointResult& r) { return detail::result_to_json(r).dump(); }
+
+PointResult result_from_json_line(const std::string& line, double K) {
+  PointResult r = detail::result_from_json(nlohmann::json::parse(line));
+  detail::check_result(r, K);
+  return r;
+}
+
+void write_results(const std::string& stem, const Scene& scene, const std::vector<PointResult>& results) {
+  std::vector<nlohmann::json> rows;
+  std::size_t lmax = 0;
+  for (const auto& r : results) {
+    rows.push_back(detail::result_to_json(r));
+    lmax = std::max<std::size_t>(lmax, r.m.counts.levels);
+  }
+  const hsize_t P = rows.size(), L = lmax;
+  detail::h5_write_file(stem + ".h5", [&](hid_t f) {
+    for (const char* c : kNumericColumns) {
+      std::vector<double> v;
+      for (const auto& j : rows) v.push_back(j.at(c).is_null() ? std::nan("") : j.at(c).get<double>());
+      detail::h5_write_dataset(f, c, v, {P});
+    }
+    for (const char* c : kTextColumns) {
+      std::vector<std::string> v;
+      for (const auto& j : rows) v.push_back(j.at(c));
+      detail::h5_write_strings(f, c, v);
+    }
+    // Per level (padded: NaN sizes, zero counts beyond a point's own L).
+    std::vector<double> sizes(P * L, std::nan(""));
+    std::vector<std::uint64_t> particles(P * L, 0), acc(P * L * L, 0), chk(P * L * L, 0);
+    for (std::size_t i = 0; i < results.size(); ++i) {
+      const Measurement& r = results[i].m;
+      const std::size_t l = r.counts.levels;
+      for (std::size_t h = 0; h < l; ++h) {
+        sizes[i * L + h] = r.sizes[h];
+        particles[i * L + h] = r.counts.particles_per_level[h];
+        for (std::size_t k = 0; k < l; ++k) {
+          acc[(i * L + h) * L + k] = r.counts.accesses_by_level[h * l + k];
+          chk[(i * L + h) * L + k] = r.counts.checks_by_level[h * l + k];
+        }
+      }
+    }
+    detail::h5_write_dataset(f, "sizes", sizes, {P, L});
+    detail::h5_write_dataset(f, "particles_per_level", particles, {P, L});
+    detail::h5_write_dataset(f, "accesses_by_level", acc, {P, L, L});
+    detail::h5_write_dataset(f, "checks_by_level", chk, {P, L, L});
+    detail::H5Handle root{H5Gopen2(f, "/", H5P_DEFAULT), H5Gclose};
+    detail::h5_write_attr(root.id, "scene", scene.name);
+    detail::h5_write_attr(root.id, "description", scene.description);
+    detail::h5_write_attr(root.id, "scale", scene.scale);
+    detail::h5_write_attr(root.id, "scene_toml", scene.source);
+    detail::h5_write_attr(root.id, "cells", std::string(to_string(scene.grid.cells)));
+    detail::h5_write_attr(root.id, "K", std::vector<double>{scene.grid.K});
+    detail::h5_write_attr(root.id, "q", std::vector<double>{scene.grid.q});
+    detail::h5_write_attr(root.id, "levels_requested", std::vector<double>{scene.grid.levels ? *scene.grid.levels : 0.0});
+    for (const auto& [k, v] : provenance_fields()) detail::h5_write_attr(root.id, k, v);
+    detail::h5_write_attr(root.id, "created_utc", utc_now());
+    detail::h5_write_attr(root.id, "matrix_layout", std::string("[point][level of the particle][level searched]"));
+  });
+  write_csv(stem + ".csv", scene, rows);
+}
+
+}  // namespace hgrid

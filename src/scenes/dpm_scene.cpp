@@ -1,0 +1,286 @@
+// The DPM free-cooling comparison (paper Sect. 5, "Full DPM test"): the same
+// initial state simulated with the model's optimal Top-Down HGrid and with
+// the linked-cell method (one level), timing the whole run and its contact
+// detection; kinetic energy against time; the model's predicted speed-up.
+#include "scenes/dpm_scene.hpp"
+
+#include "calibration/calibration.hpp"
+#include "model/time_model.hpp"
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <random>
+#include <nlohmann/json.hpp>
+
+#include "model/cell_sizes.hpp"
+#include "model/distribution.hpp"
+#include "dpm/haff.hpp"
+#include "scenes/dpm_scene_file.hpp"
+#include "dpm/simulation.hpp"
+#include "grid/hgrid.hpp"
+#include "base/threads.hpp"
+#include "model/model.hpp"
+#include "io/provenance.hpp"
+#include "io/packing_cache.hpp"
+#include "io/atomic_file.hpp"
+#include "io/h5.hpp"
+#include "base/progress.hpp"
+
+namespace hgrid::dpm {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct RunResult {
+  std::vector<double> sizes;
+  double seconds_total = 0;
+  StepStats stats;
+  std::vector<double> t, E;  // kinetic energy samples
+  double T_over_N = 0;       // measured with a counted query on the initial state
+  double checks_per_n = 0, accesses_per_n = 0;
+  std::uint64_t contacts0 = 0;
+  std::vector<double> final_state;  // positions, then velocities, at the last step
+};
+
+template <int D, Boundary B>
+Counters counted(const Packing& p, const std::vector<double>& sizes) {
+  const auto s = p.spheres<D>();
+  HGrid<D, B> g(s, p.extent<D>(), GridParams{sizes, Search::top_down});
+  return g.template query<Search::top_down, Counted>([](std::uint32_t, std::uint32_t) {});
+}
+
+Counters measured_counts(const Packing& p, const std::vector<double>& sizes) {
+  const bool w = p.boundary == Boundary::walls;
+  if (p.d == 2) return w ? counted<2, Boundary::walls>(p, sizes) : counted<2, Boundary::periodic>(p, sizes);
+  return w ? counted<3, Boundary::walls>(p, sizes) : counted<3, Boundary::periodic>(p, sizes);
+}
+
+RunResult simulate(const DpmScene& sc, const Packing& p, const std::vector<double>& vel, std::vector<double> sizes,
+                   const std::string& label, bool progress) {
+  RunResult r;
+  r.sizes = sizes;
+  const Counters cnt = measured_counts(p, sizes);
+  const double n = static_cast<double>(p.size());
+  r.T_over_N = cnt.cost(sc.K) / n;
+  r.contacts0 = cnt.contacts;
+  r.checks_per_n = static_cast<double>(cnt.narrow_phase_checks) / n;
+  r.accesses_per_n = static_cast<double>(cnt.cell_accesses) / n;
+  DpmConfig c = sc.config;
+  c.box = p.box;
+  c.sizes = std::move(sizes);
+  c.search = Search::top_down;
+  auto sim = make_simulation(c, p, vel);
+  const auto t0 = Clock::now();
+  r.t.push_back(0);
+  r.E.push_back(sim->kinetic_energy());
+  Progress bar(progress, "  " + label, "steps");
+  std::uint64_t done = 0;
+  while (done < sc.steps) {
+    const std::uint64_t n = std::min(sc.sample_every, sc.steps - done);
+    sim->run(n);
+    done += n;
+    r.t.push_back(sim->time());
+    r.E.push_back(sim->kinetic_energy());
+    bar.count(static_cast<double>(done), static_cast<double>(sc.steps));
+  }
+  r.seconds_total = std::chrono::duration<double>(Clock::now() - t0).count();
+  r.stats = sim->stats();
+  r.final_state = sim->positions();
+  const auto v = sim->velocities();
+  r.final_state.insert(r.final_state.end(), v.begin(), v.end());
+  return r;
+}
+
+nlohmann::json run_json(const RunResult& r) {
+  return {{"sizes", r.sizes},
+          {"levels", r.sizes.size()},
+          {"seconds_total", r.seconds_total},
+          {"seconds_contact_detection", r.stats.seconds_contact_detection},
+          {"seconds_grid_build", r.stats.seconds_grid_build},
+          {"seconds_query", r.stats.seconds_query},
+          {"seconds_forces", r.stats.seconds_forces},
+          {"seconds_integration", r.stats.seconds_integration},
+          {"steps", r.stats.steps},
+          {"pair_contacts", r.stats.pair_contacts},
+          {"wall_contacts", r.stats.wall_contacts},
+          {"friction_evaluations", r.stats.friction_evaluations},
+          {"gravity_evaluations", r.stats.gravity_evaluations},
+          {"measured_T_over_N_initial", r.T_over_N},
+          {"checks_per_particle_initial", r.checks_per_n},
+          {"accesses_per_particle_initial", r.accesses_per_n},
+          {"energy_final_over_initial", r.E.back() / r.E.front()}};
+}
+
+/// The summary as dotted key -> scalar, string or array of numbers (booleans
+/// and integers as numbers), in a fixed order.
+std::vector<std::pair<std::string, nlohmann::json>> flatten(const nlohmann::json& j, const std::string& prefix = "") {
+  std::vector<std::pair<std::string, nlohmann::json>> out;
+  for (const auto& [k, v] : j.items()) {
+    const std::string key = prefix.empty() ? k : prefix + "." + k;
+    if (v.is_object()) {
+      for (auto& kv : flatten(v, key)) out.push_back(std::move(kv));
+    } else if (v.is_boolean()) {
+      out.emplace_back(key, v.get<bool>() ? 1.0 : 0.0);
+    } else if (v.is_number()) {
+      out.emplace_back(key, v.get<double>());
+    } else {
+      out.emplace_back(key, v);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+void run_dpm_scene(const std::string& path, const std::string& scale, const RunOptions& opt, bool json) {
+  const DpmScene sc = load_dpm_scene(path, scale);
+  PackingSpec spec = sc.initial;
+  spec.progress = opt.progress;
+  std::filesystem::create_directories(opt.packing_dir);
+  const Packing p = cached_packing(spec, opt.packing_dir);
+
+  // Initial velocities: independent Gaussian components of std `speed`.
+  std::mt19937_64 rng(sc.velocity_seed);
+  std::normal_distribution<double> g(0.0, sc.speed);
+  std::vector<double> vel(p.size() * p.d);
+  for (auto& v : vel) v = g(rng);
+
+  // Cell sizes: the cost model for the scene's distribution (the paper's
+  // procedure), K and nu; the linked cell is one level of reference_size.
+  const PowerLaw dist(sc.initial.alpha, sc.initial.omega);
+  const ModelParams mp{sc.initial.d, sc.initial.nu, sc.K, Search::top_down};
+  const SizeChoice choice = choose_cell_sizes(dist, mp, sc.method);
+  std::vector<double> opt_sizes = sizes_for_grid(choice.sizes, 2 * sc.initial.omega);
+  const std::vector<double> lc_sizes{sc.reference_size};
+  const double model_opt = evaluate_model(dist, mp, opt_sizes).T_over_N;
+  const double model_lc = evaluate_model(dist, mp, lc_sizes).T_over_N;
+  // The same model for this run's own radii and packing fraction.
+  const Empirical own(p.radii);
+  const ModelParams mp_own{p.d, p.packing_fraction(), sc.K, Search::top_down};
+  const double own_ratio = evaluate_model(own, mp_own, lc_sizes).T_over_N / evaluate_model(own, mp_own, opt_sizes).T_over_N;
+
+  if (opt.progress)
+    std::cerr << "hgrid run: DPM scene " << sc.name << " (" << scale << " scale): N = " << p.size() << ", "
+              << sc.steps << " steps, dt = " << sc.dt_over_tc << " t_c, e = " << sc.config.restitution << "\n";
+  const RunResult a = simulate(sc, p, vel, opt_sizes, "optimal", opt.progress);
+  const RunResult b = simulate(sc, p, vel, lc_sizes, "linked cell", opt.progress);
+  const HaffFit haff = fit_haff(a.t, a.E);
+  // The engine sums forces in canonical pair order, so the two grids must
+  // give the same simulation, bit for bit: anything else is a bug.
+  const bool identical = a.final_state == b.final_state && a.E == b.E;
+  if (!identical)
+    std::cerr << "hgrid run: warning: the optimal-grid and linked-cell runs of " << sc.name
+              << " ended in different states (the engine should not depend on the grid)\n";
+  // This solver's own overhead factor (paper Sect. 7: use the K of your
+  // solver): query seconds per particle-step = c_check * checks + c_access *
+  // accesses, solved from the two runs' initial counts; K_eff = c_access / c_check.
+  const double steps_n = static_cast<double>(sc.steps) * static_cast<double>(p.size());
+  const double qa = a.stats.seconds_query / steps_n, qb = b.stats.seconds_query / steps_n;
+  const double det = a.checks_per_n * b.accesses_per_n - b.checks_per_n * a.accesses_per_n;
+  const double c_check = (qa * b.accesses_per_n - qb * a.accesses_per_n) / det;
+  const double c_access = (a.checks_per_n * qb - b.checks_per_n * qa) / det;
+
+  nlohmann::json out = {
+      {"scene", sc.name},
+      {"scale", scale},
+      {"source", sc.source},
+      {"n", p.size()},
+      {"d", p.d},
+      {"nu", p.packing_fraction()},
+      {"alpha", sc.initial.alpha},
+      {"omega", sc.initial.omega},
+      {"boundary", to_string(p.boundary)},
+      {"placement", to_string(sc.initial.placement)},
+      {"packing_seed", sc.initial.seed},
+      {"velocity_seed", sc.velocity_seed},
+      {"restitution", sc.config.restitution},
+      {"contact_time", sc.config.contact_time},
+      {"dt_over_tc", sc.dt_over_tc},
+      {"steps", sc.steps},
+      {"threads", resolve_threads(sc.config.threads)},
+      {"friction", sc.config.friction},
+      {"gravity", sc.config.gravity},
+      {"K", sc.K},
+      {"optimal", run_json(a)},
+      {"linked_cell", run_json(b)},
+      {"trajectories_identical", identical},
+      {"model_T_over_N_optimal", model_opt},
+      {"model_T_over_N_linked_cell", model_lc},
+      {"predicted_speedup_contact_detection", model_lc / model_opt},
+      {"predicted_speedup_contact_detection_own_radii", own_ratio},
+      {"measured_count_ratio", b.T_over_N / a.T_over_N},
+      {"speedup_contact_detection", b.stats.seconds_contact_detection / a.stats.seconds_contact_detection},
+      {"speedup_query", b.stats.seconds_query / a.stats.seconds_query},
+      {"speedup_total", b.seconds_total / a.seconds_total},
+      {"seconds_per_check", c_check},
+      {"seconds_per_access", c_access},
+      {"K_effective", c_access / c_check},
+      {"haff", {{"t0", haff.t0}, {"E0", haff.E0}, {"r2", haff.r2}}},
+  };
+  // The time model's contact-detection speed-up (build + query per step) for
+  // the two grids on this run's radii, with this machine's calibration.
+  const std::optional<Calibration> cal = stored_calibration();
+  if (const TimeModelFit* t = cal ? cal->time_model(p.d) : nullptr) {
+    const double n = static_cast<double>(p.size());
+    const double lc = predict_seconds(t->coef, expected_time_terms(own, mp_own, lc_sizes, n)).total();
+    const double og = predict_seconds(t->coef, expected_time_terms(own, mp_own, opt_sizes, n)).total();
+    out["predicted_speedup_seconds"] = lc / og;
+    out["time_model"] = "calibration of " + cal->date + " on " + cal->machine;
+  } else {
+    out["time_model"] = "none: no calibration with a " + std::to_string(p.d) + "D time model (run hgrid calibrate)";
+  }
+  for (const auto& [k, v] : provenance_fields()) out[k] = v;
+
+  std::filesystem::create_directories(opt.results_dir);
+  const std::string stem = opt.results_dir + "/" + sc.name + (scale == "default" ? "" : "-" + scale);
+  std::vector<double> haff_E(a.t.size()), lc_E(a.t.size(), std::nan(""));
+  for (std::size_t i = 0; i < a.t.size(); ++i) {
+    haff_E[i] = haff.E0 / ((1 + a.t[i] / haff.t0) * (1 + a.t[i] / haff.t0));
+    if (i < b.E.size()) lc_E[i] = b.E[i];
+  }
+  const auto flat = flatten(out);
+  // HDF5: the summary as root attributes, the energy curves as datasets.
+  detail::h5_write_file(stem + ".h5", [&](hid_t f) {
+    detail::h5_write_dataset(f, "/t", a.t, {a.t.size()});
+    detail::h5_write_dataset(f, "/E_optimal", a.E, {a.E.size()});
+    detail::h5_write_dataset(f, "/E_linked_cell", lc_E, {lc_E.size()});
+    detail::h5_write_dataset(f, "/E_haff", haff_E, {haff_E.size()});
+    detail::H5Handle root{H5Gopen2(f, "/", H5P_DEFAULT), H5Gclose};
+    for (const auto& [k, v] : flat) {
+      if (v.is_string()) detail::h5_write_attr(root.id, k, v.get<std::string>());
+      else if (v.is_array()) detail::h5_write_attr(root.id, k, v.get<std::vector<double>>());
+      else detail::h5_write_attr(root.id, k, std::vector<double>{v.get<double>()});
+    }
+  });
+  // CSV: the same summary as "# key=value" lines (what plots/dpm.sh renders),
+  // then the energy curves.
+  write_stream_atomically(stem + ".csv", [&](std::ostream& csv) {
+    csv.precision(10);
+    for (const auto& [k, v] : flat) {
+      if (k == "source") continue;  // multi-line: in the HDF5 file
+      csv << "# " << k << "=";
+      if (v.is_string()) csv << v.get<std::string>();
+      else if (v.is_array()) {
+        for (std::size_t i = 0; i < v.size(); ++i) csv << (i ? ";" : "") << v[i].get<double>();
+      } else csv << v.get<double>();
+      csv << "\n";
+    }
+    csv << "t,E_optimal,E_linked_cell,E_haff\n";
+    for (std::size_t i = 0; i < a.t.size(); ++i) csv << a.t[i] << "," << a.E[i] << "," << lc_E[i] << "," << haff_E[i] << "\n";
+  });
+
+  if (json) std::cout << out.dump(2) << "\n";
+  else
+    std::cout << sc.name << " (" << scale << "): speed-up contact detection "
+              << out["speedup_contact_detection"].get<double>() << " (predicted "
+              << out["predicted_speedup_contact_detection"].get<double>()
+              << (out.contains("predicted_speedup_seconds")
+                      ? "; time model " + format_number(out["predicted_speedup_seconds"].get<double>())
+                      : std::string())
+              << "), whole run "
+              << out["speedup_total"].get<double>() << "; results in " << stem << ".h5 and .csv\n";
+}
+
+}  // namespace hgrid::dpm

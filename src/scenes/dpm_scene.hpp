@@ -1,0 +1,13 @@
+// DPM scenes (kind = "dpm"): a discrete-element run driven by a scene file.
+#pragma once
+#include <string>
+
+#include "scenes/runner.hpp"
+
+namespace hgrid::dpm {
+
+/// Runs a DPM scene at a scale and writes its results; with `json`, prints a
+/// JSON summary on stdout. Throws InputError naming a bad key or value.
+void run_dpm_scene(const std::string& path, const std::string& scale, const RunOptions& opt, bool json);
+
+}  // namespace hgrid::dpm
