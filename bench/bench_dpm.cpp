@@ -5,9 +5,9 @@
 
 #include <random>
 
-#include "model/cell_sizes.hpp"
-#include "dpm/simulation.hpp"
-#include "packing/generate.hpp"
+#include "hgridlab/model/cell_sizes.hpp"
+#include "hgridlab/dpm/simulation.hpp"
+#include "hgridlab/packing/generate.hpp"
 
 using namespace hgrid;
 

@@ -9,7 +9,7 @@
 #include <fstream>
 #include <string>
 
-#include "packing/generate.hpp"
+#include "hgridlab/packing/generate.hpp"
 
 namespace {
 

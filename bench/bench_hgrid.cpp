@@ -10,10 +10,10 @@
 #include <memory>
 #include <vector>
 
-#include "grid/brute_force.hpp"
-#include "model/cell_sizes.hpp"
-#include "packing/generate.hpp"
-#include "grid/hgrid.hpp"
+#include "hgridlab/grid/brute_force.hpp"
+#include "hgridlab/model/cell_sizes.hpp"
+#include "hgridlab/packing/generate.hpp"
+#include "hgridlab/grid/hgrid.hpp"
 
 namespace {
 

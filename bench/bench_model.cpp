@@ -2,7 +2,7 @@
 // <= 5 ms; L* search <= 50 ms. Figure data: time `hgrid modelfigs`.
 #include <benchmark/benchmark.h>
 
-#include "model/cell_sizes.hpp"
+#include "hgridlab/model/cell_sizes.hpp"
 
 using namespace hgrid;
 

@@ -19,12 +19,12 @@
 #include <CLI/CLI.hpp>
 
 #include "bench/lammps_run.hpp"
-#include "advice/lammps_fit.hpp"
-#include "io/packing_cache.hpp"
-#include "base/error.hpp"
-#include "io/lammps_export.hpp"
-#include "io/provenance.hpp"
-#include "model/lammps_multi.hpp"
+#include "hgridlab/advice/lammps_fit.hpp"
+#include "hgridlab/io/packing_cache.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/io/lammps_export.hpp"
+#include "hgridlab/io/provenance.hpp"
+#include "hgridlab/model/lammps_multi.hpp"
 
 namespace {
 

@@ -5,14 +5,19 @@ include(CMakePackageConfigHelpers)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/hgridlab
         FILES_MATCHING PATTERN "*.hpp" PATTERN "cli" EXCLUDE
         PATTERN "mpi" EXCLUDE)  # the tool's MPI layer: not installed (its library is not)
-install(FILES ${HGRID_GENERATED}/grid/version.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/hgridlab/grid)
-install(TARGETS hgridlab_core hgridlab EXPORT hgridlabTargets
+install(FILES ${HGRID_INCLUDE}/hgridlab/grid/version.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/hgridlab/grid)
+# Two components, each with its own export file: core (the header-only grid,
+# whose one dependency is OpenMP) and hgridlab (the library, with HDF5, GSL,
+# nlohmann-json and toml++), so that a C++-only project can use the core.
+install(TARGETS hgridlab_core EXPORT hgridlabCoreTargets INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(TARGETS hgridlab EXPORT hgridlabTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/hgridlab)
+        INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 if(HGRID_BUILD_CLI)
   install(TARGETS hgrid RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()
 set(HGRID_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/hgridlab)
+install(EXPORT hgridlabCoreTargets NAMESPACE hgridlab:: DESTINATION ${HGRID_CMAKE_DIR})
 install(EXPORT hgridlabTargets NAMESPACE hgridlab:: DESTINATION ${HGRID_CMAKE_DIR})
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/hgridlabConfig.cmake.in
   ${PROJECT_BINARY_DIR}/hgridlabConfig.cmake INSTALL_DESTINATION ${HGRID_CMAKE_DIR})

@@ -11,16 +11,16 @@
 #include <string>
 #include <vector>
 
-#include "calibration/k_choice.hpp"
-#include "advice/recommend.hpp"
-#include "advice/recommend_json.hpp"
-#include "measure/fields.hpp"
-#include "measure/measurement.hpp"
-#include "measure/pairs.hpp"
-#include "base/error.hpp"
-#include "grid/version.hpp"
-#include "io/particle_file.hpp"
-#include "packing/packing.hpp"
+#include "hgridlab/calibration/k_choice.hpp"
+#include "hgridlab/advice/recommend.hpp"
+#include "hgridlab/advice/recommend_json.hpp"
+#include "hgridlab/measure/fields.hpp"
+#include "hgridlab/measure/measurement.hpp"
+#include "hgridlab/measure/pairs.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/grid/version.hpp"
+#include "hgridlab/io/particle_file.hpp"
+#include "hgridlab/packing/packing.hpp"
 
 namespace py = pybind11;
 using namespace hgrid;

@@ -16,6 +16,11 @@ for s in "${stages[@]}"; do
   own=$(rank "$s")
   while IFS= read -r -d '' f; do
     while IFS= read -r inc; do
+      case "$inc" in
+        hgridlab/*) inc=${inc#hgridlab/} ;;
+        */*) [ "$(rank "${inc%%/*}")" -ge 0 ] && { echo "$f: includes \"$inc\": a stage's header is named hgridlab/$inc"; bad=1; }; continue ;;
+        *) continue ;;  # a header beside the file
+      esac
       target=${inc%%/*}
       r=$(rank "$target")
       if [ "$r" -lt 0 ]; then
@@ -28,9 +33,15 @@ for s in "${stages[@]}"; do
     done < <(sed -n 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*"\([^"]*\)".*/\1/p' "$f")
   done < <(find "$root/src/$s" -name '*.[ch]pp' -print0)
 done
-# The tool and the benchmarks use public headers only.
+# The tool and the benchmarks use public headers only; tests, benchmarks and
+# the Python module name stage headers hgridlab/STAGE/... too.
 while IFS= read -r -d '' f; do
-  if grep -E '^[[:space:]]*#[[:space:]]*include[[:space:]]*"[a-z]+/detail/' "$f" | grep -vq '"bench/detail/'; then
+  if grep -qE '^[[:space:]]*#[[:space:]]*include[[:space:]]*"(base|grid|model|packing|io|measure|dpm|calibration|advice|scenes|mpi)/' "$f"; then
+    echo "$f: includes a stage's header without hgridlab/"; bad=1
+  fi
+done < <(find "$root/tests" "$root/bench" "$root/python" "$root/src/cli" -name '*.[ch]pp' -print0)
+while IFS= read -r -d '' f; do
+  if grep -E '^[[:space:]]*#[[:space:]]*include[[:space:]]*"(hgridlab/)?[a-z]+/detail/' "$f" | grep -vq '"bench/detail/'; then
     echo "$f: includes a stage's internal header"; bad=1
   fi
 done < <(find "$root/src/cli" "$root/bench" -maxdepth 1 -name '*.[ch]pp' -print0)

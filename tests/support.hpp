@@ -9,9 +9,9 @@
 #include <utility>
 #include <vector>
 
-#include "grid/brute_force.hpp"
-#include "grid/hgrid.hpp"
-#include "packing/packing.hpp"
+#include "hgridlab/grid/brute_force.hpp"
+#include "hgridlab/grid/hgrid.hpp"
+#include "hgridlab/packing/packing.hpp"
 
 namespace hgrid::test {
 

@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "measure/balance.hpp"
+#include "hgridlab/measure/balance.hpp"
 #include "support.hpp"
 
 namespace {

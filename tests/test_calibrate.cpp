@@ -8,10 +8,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "calibration/calibrate.hpp"
-#include "calibration/calibration.hpp"
-#include "base/error.hpp"
-#include "scenes/scene.hpp"
+#include "hgridlab/calibration/calibrate.hpp"
+#include "hgridlab/calibration/calibration.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/scenes/scene.hpp"
 
 namespace hgrid {
 namespace {

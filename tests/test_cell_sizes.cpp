@@ -6,9 +6,9 @@
 #include <limits>
 #include <random>
 
-#include "model/cell_sizes.hpp"
-#include "model/detail/model_sizes.hpp"
-#include "base/error.hpp"
+#include "hgridlab/model/cell_sizes.hpp"
+#include "hgridlab/model/detail/model_sizes.hpp"
+#include "hgridlab/base/error.hpp"
 
 using namespace hgrid;
 

@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_support.hpp"
-#include "calibration/calibration.hpp"
+#include "hgridlab/calibration/calibration.hpp"
 
 namespace {
 

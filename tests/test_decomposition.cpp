@@ -5,7 +5,7 @@
 
 #include <map>
 
-#include "grid/decomposed_query.hpp"
+#include "hgridlab/grid/decomposed_query.hpp"
 #include "support.hpp"
 
 namespace hgrid::test {

@@ -6,8 +6,8 @@
 #include <limits>
 #include <numeric>
 
-#include "model/distribution.hpp"
-#include "base/error.hpp"
+#include "hgridlab/model/distribution.hpp"
+#include "hgridlab/base/error.hpp"
 
 using namespace hgrid;
 

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <random>
 
-#include "dpm/simulation.hpp"
-#include "base/error.hpp"
+#include "hgridlab/dpm/simulation.hpp"
+#include "hgridlab/base/error.hpp"
 
 namespace hgrid::dpm {
 namespace {

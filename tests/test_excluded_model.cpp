@@ -6,13 +6,13 @@
 #include <numbers>
 #include <vector>
 
-#include "base/error.hpp"
-#include "model/detail/py_mixture.hpp"
-#include "model/detail/py_numeric.hpp"
-#include "model/detail/walls.hpp"
-#include "model/detail/window.hpp"
-#include "model/distribution.hpp"
-#include "model/excluded.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/model/detail/py_mixture.hpp"
+#include "hgridlab/model/detail/py_numeric.hpp"
+#include "hgridlab/model/detail/walls.hpp"
+#include "hgridlab/model/detail/window.hpp"
+#include "hgridlab/model/distribution.hpp"
+#include "hgridlab/model/excluded.hpp"
 
 namespace hgrid {
 namespace {

@@ -10,15 +10,15 @@
 
 #include <random>
 
-#include "packing/detail/gen_pairs.hpp"
-#include "packing/detail/gen_relax.hpp"
-#include "base/progress.hpp"
-#include "base/error.hpp"
-#include "packing/generate.hpp"
-#include "packing/rcp.hpp"
+#include "hgridlab/packing/detail/gen_pairs.hpp"
+#include "hgridlab/packing/detail/gen_relax.hpp"
+#include "hgridlab/base/progress.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/packing/generate.hpp"
+#include "hgridlab/packing/rcp.hpp"
 #include "support.hpp"
-#include "io/packing_file.hpp"
-#include "io/packing_cache.hpp"
+#include "hgridlab/io/packing_file.hpp"
+#include "hgridlab/io/packing_cache.hpp"
 
 namespace hgrid {
 namespace {

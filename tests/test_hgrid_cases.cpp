@@ -1,7 +1,7 @@
 // Degenerate and manufactured cases, and counts worked out by hand.
 #include <gtest/gtest.h>
 
-#include "base/error.hpp"
+#include "hgridlab/base/error.hpp"
 #include "support.hpp"
 
 namespace hgrid::test {

@@ -9,7 +9,7 @@
 #include <limits>
 #include <new>
 
-#include "base/error.hpp"
+#include "hgridlab/base/error.hpp"
 #include "support.hpp"
 
 // Every allocation of this test program through operator new is counted, so

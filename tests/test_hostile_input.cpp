@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "cli_support.hpp"
-#include "base/error.hpp"
-#include "io/packing_file.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/io/packing_file.hpp"
 
 namespace hgrid::test {
 namespace {

@@ -6,13 +6,13 @@
 #include <filesystem>
 #include <fstream>
 
-#include "scenes/journal.hpp"
-#include "scenes/result_files.hpp"
-#include "scenes/runner.hpp"
-#include "base/error.hpp"
+#include "hgridlab/scenes/journal.hpp"
+#include "hgridlab/scenes/result_files.hpp"
+#include "hgridlab/scenes/runner.hpp"
+#include "hgridlab/base/error.hpp"
 #include "cli_support.hpp"
-#include "mpi/comm.hpp"
-#include "mpi/sweep.hpp"
+#include "hgridlab/mpi/comm.hpp"
+#include "hgridlab/mpi/sweep.hpp"
 
 namespace hgrid {
 namespace {

@@ -10,9 +10,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "base/error.hpp"
-#include "io/lammps_export.hpp"
-#include "io/packing_file.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/io/lammps_export.hpp"
+#include "hgridlab/io/packing_file.hpp"
 #include "bench/lammps_run.hpp"
 #include "support.hpp"
 

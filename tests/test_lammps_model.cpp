@@ -11,9 +11,9 @@
 #include <sstream>
 #include <string>
 
-#include "advice/lammps_fit.hpp"
-#include "base/error.hpp"
-#include "model/lammps_multi.hpp"
+#include "hgridlab/advice/lammps_fit.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/model/lammps_multi.hpp"
 #include "support.hpp"
 
 namespace hgrid::test {

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <limits>
 
-#include "model/cell_sizes.hpp"
-#include "model/detail/model_cost.hpp"
-#include "base/error.hpp"
-#include "model/model.hpp"
+#include "hgridlab/model/cell_sizes.hpp"
+#include "hgridlab/model/detail/model_cost.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/model/model.hpp"
 
 using namespace hgrid;
 

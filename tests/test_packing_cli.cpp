@@ -8,14 +8,14 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "base/error.hpp"
-#include "packing/packing.hpp"
-#include "packing/packing_sizes.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/packing/packing.hpp"
+#include "hgridlab/packing/packing_sizes.hpp"
 #include "cli_support.hpp"
-#include "base/threads.hpp"
+#include "hgridlab/base/threads.hpp"
 #include "support.hpp"
-#include "io/packing_file.hpp"
-#include "io/provenance.hpp"
+#include "hgridlab/io/packing_file.hpp"
+#include "hgridlab/io/provenance.hpp"
 
 namespace hgrid::test {
 namespace {

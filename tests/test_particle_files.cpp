@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "cli_support.hpp"
-#include "base/error.hpp"
-#include "io/lammps_export.hpp"
-#include "io/packing_file.hpp"
-#include "io/particle_file.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/io/lammps_export.hpp"
+#include "hgridlab/io/packing_file.hpp"
+#include "hgridlab/io/particle_file.hpp"
 #include "support.hpp"
 
 namespace hgrid::test {

@@ -10,11 +10,11 @@
 
 #include "bench/lammps_run.hpp"
 #include "cli_support.hpp"
-#include "advice/recommend.hpp"
-#include "base/error.hpp"
-#include "io/lammps_export.hpp"
-#include "io/packing_file.hpp"
-#include "io/peer_settings.hpp"
+#include "hgridlab/advice/recommend.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/io/lammps_export.hpp"
+#include "hgridlab/io/packing_file.hpp"
+#include "hgridlab/io/peer_settings.hpp"
 #include "support.hpp"
 
 namespace hgrid::test {

@@ -10,9 +10,9 @@
 #include <map>
 #include <sstream>
 
-#include "model/distribution.hpp"
-#include "scenes/runner.hpp"
-#include "model/model.hpp"
+#include "hgridlab/model/distribution.hpp"
+#include "hgridlab/scenes/runner.hpp"
+#include "hgridlab/model/model.hpp"
 
 namespace hgrid {
 namespace {

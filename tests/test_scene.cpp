@@ -4,8 +4,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "base/error.hpp"
-#include "scenes/scene.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/scenes/scene.hpp"
 
 namespace hgrid {
 namespace {

@@ -8,9 +8,9 @@
 #include <random>
 #include <vector>
 
-#include "base/error.hpp"
-#include "packing/detail/gen_stationary.hpp"
-#include "packing/generate.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/packing/detail/gen_stationary.hpp"
+#include "hgridlab/packing/generate.hpp"
 
 namespace hgrid {
 namespace {

@@ -8,12 +8,12 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_support.hpp"
-#include "calibration/calibrate.hpp"
-#include "calibration/calibration.hpp"
-#include "grid/hgrid.hpp"
-#include "model/cell_sizes.hpp"
-#include "model/distribution.hpp"
-#include "model/time_model.hpp"
+#include "hgridlab/calibration/calibrate.hpp"
+#include "hgridlab/calibration/calibration.hpp"
+#include "hgridlab/grid/hgrid.hpp"
+#include "hgridlab/model/cell_sizes.hpp"
+#include "hgridlab/model/distribution.hpp"
+#include "hgridlab/model/time_model.hpp"
 #include "support.hpp"
 
 namespace {

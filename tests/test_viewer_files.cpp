@@ -7,10 +7,10 @@
 #include <sstream>
 
 #include "cli_support.hpp"
-#include "base/error.hpp"
-#include "io/packing_file.hpp"
-#include "io/viewer_files.hpp"
-#include "packing/grid_placement.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/io/packing_file.hpp"
+#include "hgridlab/io/viewer_files.hpp"
+#include "hgridlab/packing/grid_placement.hpp"
 
 namespace hgrid::test {
 namespace {

@@ -29,7 +29,7 @@
 #include <vector>
 
 #include "bench/detail/periodic_images.hpp"
-#include "grid/geometry.hpp"
+#include "hgridlab/grid/geometry.hpp"
 
 namespace hgrid::bench {
 

@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-#include "grid/geometry.hpp"
+#include "hgridlab/grid/geometry.hpp"
 
 namespace hgrid::bench {
 

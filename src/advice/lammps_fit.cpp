@@ -1,4 +1,4 @@
-#include "advice/lammps_fit.hpp"
+#include "hgridlab/advice/lammps_fit.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "calibration/least_squares.hpp"
-#include "base/error.hpp"
+#include "hgridlab/calibration/least_squares.hpp"
+#include "hgridlab/base/error.hpp"
 
 namespace hgrid {
 

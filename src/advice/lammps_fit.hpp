@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "model/lammps_multi.hpp"
+#include "hgridlab/model/lammps_multi.hpp"
 
 namespace hgrid {
 

@@ -1,10 +1,10 @@
-#include "advice/model_answer.hpp"
+#include "hgridlab/advice/model_answer.hpp"
 
-#include "base/error.hpp"
-#include "model/excluded.hpp"
-#include "packing/packing.hpp"
-#include "packing/packing_model.hpp"
-#include "packing/packing_sizes.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/model/excluded.hpp"
+#include "hgridlab/packing/packing.hpp"
+#include "hgridlab/packing/packing_model.hpp"
+#include "hgridlab/packing/packing_sizes.hpp"
 
 namespace hgrid {
 

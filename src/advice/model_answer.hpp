@@ -7,11 +7,11 @@
 #include <string>
 #include <vector>
 
-#include "calibration/calibration.hpp"
-#include "model/cell_sizes.hpp"
-#include "model/distribution.hpp"
-#include "model/model.hpp"
-#include "model/time_model.hpp"
+#include "hgridlab/calibration/calibration.hpp"
+#include "hgridlab/model/cell_sizes.hpp"
+#include "hgridlab/model/distribution.hpp"
+#include "hgridlab/model/model.hpp"
+#include "hgridlab/model/time_model.hpp"
 
 namespace hgrid {
 

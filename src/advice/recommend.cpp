@@ -1,14 +1,14 @@
-#include "advice/recommend.hpp"
+#include "hgridlab/advice/recommend.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "calibration/calibration.hpp"
-#include "advice/lammps_fit.hpp"
-#include "base/error.hpp"
-#include "grid/geometry.hpp"
-#include "model/cell_sizes.hpp"
-#include "model/distribution.hpp"
+#include "hgridlab/calibration/calibration.hpp"
+#include "hgridlab/advice/lammps_fit.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/grid/geometry.hpp"
+#include "hgridlab/model/cell_sizes.hpp"
+#include "hgridlab/model/distribution.hpp"
 
 namespace hgrid {
 

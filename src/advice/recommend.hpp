@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "calibration/k_choice.hpp"
-#include "model/model.hpp"
-#include "model/time_model.hpp"
+#include "hgridlab/calibration/k_choice.hpp"
+#include "hgridlab/model/model.hpp"
+#include "hgridlab/model/time_model.hpp"
 
 namespace hgrid {
 

@@ -1,8 +1,8 @@
-#include "advice/recommend_json.hpp"
+#include "hgridlab/advice/recommend_json.hpp"
 
 #include <nlohmann/json.hpp>
 
-#include "io/peer_settings.hpp"
+#include "hgridlab/io/peer_settings.hpp"
 
 namespace hgrid {
 

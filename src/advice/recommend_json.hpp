@@ -3,8 +3,8 @@
 #pragma once
 #include <string>
 
-#include "calibration/k_choice.hpp"
-#include "advice/recommend.hpp"
+#include "hgridlab/calibration/k_choice.hpp"
+#include "hgridlab/advice/recommend.hpp"
 
 namespace hgrid {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <type_traits>
 
-#include "base/error.hpp"
+#include "hgridlab/base/error.hpp"
 
 #if defined(_OPENMP)
 #include <omp.h>

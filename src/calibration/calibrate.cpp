@@ -1,4 +1,4 @@
-#include "calibration/calibrate.hpp"
+#include "hgridlab/calibration/calibrate.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -7,10 +7,10 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "calibration/least_squares.hpp"
-#include "base/error.hpp"
-#include "packing/packing_sizes.hpp"
-#include "io/provenance.hpp"
+#include "hgridlab/calibration/least_squares.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/packing/packing_sizes.hpp"
+#include "hgridlab/io/provenance.hpp"
 
 namespace hgrid {
 namespace {

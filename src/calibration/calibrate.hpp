@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "calibration/calibration.hpp"
-#include "packing/generate.hpp"
-#include "measure/measurement.hpp"
+#include "hgridlab/calibration/calibration.hpp"
+#include "hgridlab/packing/generate.hpp"
+#include "hgridlab/measure/measurement.hpp"
 
 namespace hgrid {
 

@@ -1,4 +1,4 @@
-#include "calibration/calibration.hpp"
+#include "hgridlab/calibration/calibration.hpp"
 
 #include <cmath>
 #include <cstdlib>
@@ -10,8 +10,8 @@
 #include <string_view>
 #include <unistd.h>
 
-#include "base/error.hpp"
-#include "io/atomic_file.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/io/atomic_file.hpp"
 
 namespace hgrid {
 namespace {

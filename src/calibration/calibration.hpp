@@ -5,7 +5,7 @@
 #include <optional>
 #include <string>
 
-#include "model/time_model.hpp"
+#include "hgridlab/model/time_model.hpp"
 
 namespace hgrid {
 

@@ -1,9 +1,9 @@
-#include "calibration/k_choice.hpp"
+#include "hgridlab/calibration/k_choice.hpp"
 
 #include <filesystem>
 
-#include "calibration/calibration.hpp"
-#include "base/error.hpp"
+#include "hgridlab/calibration/calibration.hpp"
+#include "hgridlab/base/error.hpp"
 
 namespace hgrid {
 

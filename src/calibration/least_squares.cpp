@@ -1,4 +1,4 @@
-#include "calibration/least_squares.hpp"
+#include "hgridlab/calibration/least_squares.hpp"
 
 #include <cmath>
 #include <gsl/gsl_errno.h>

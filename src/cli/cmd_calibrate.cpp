@@ -9,10 +9,10 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "cli/common.hpp"
-#include "io/atomic_file.hpp"
-#include "calibration/calibrate.hpp"
-#include "base/error.hpp"
+#include "common.hpp"
+#include "hgridlab/io/atomic_file.hpp"
+#include "hgridlab/calibration/calibrate.hpp"
+#include "hgridlab/base/error.hpp"
 
 namespace hgrid::cli {
 namespace {

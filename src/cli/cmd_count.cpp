@@ -8,11 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "calibration/calibration.hpp"
-#include "cli/grid_options.hpp"
-#include "measure/balance.hpp"
-#include "measure/fields.hpp"
-#include "measure/measurement.hpp"
+#include "hgridlab/calibration/calibration.hpp"
+#include "grid_options.hpp"
+#include "hgridlab/measure/balance.hpp"
+#include "hgridlab/measure/fields.hpp"
+#include "hgridlab/measure/measurement.hpp"
 
 namespace hgrid::cli {
 namespace {

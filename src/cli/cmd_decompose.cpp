@@ -9,13 +9,13 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "cli/common.hpp"
-#include "model/distribution.hpp"
-#include "measure/fields.hpp"
-#include "measure/measurement.hpp"
-#include "model/model.hpp"
-#include "mpi/comm.hpp"
-#include "mpi/decomposed.hpp"
+#include "common.hpp"
+#include "hgridlab/model/distribution.hpp"
+#include "hgridlab/measure/fields.hpp"
+#include "hgridlab/measure/measurement.hpp"
+#include "hgridlab/model/model.hpp"
+#include "hgridlab/mpi/comm.hpp"
+#include "hgridlab/mpi/decomposed.hpp"
 
 namespace hgrid::cli {
 

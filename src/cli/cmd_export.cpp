@@ -6,17 +6,17 @@
 #include <iostream>
 #include <memory>
 
-#include "cli/common.hpp"
-#include "base/error.hpp"
-#include "packing/generate.hpp"
-#include "io/lammps_export.hpp"
-#include "io/packing_file.hpp"
-#include "io/peer_settings.hpp"
-#include "io/viewer_files.hpp"
-#include "calibration/k_choice.hpp"
-#include "io/packing_cache.hpp"
-#include "advice/recommend.hpp"
-#include "packing/grid_placement.hpp"
+#include "common.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/packing/generate.hpp"
+#include "hgridlab/io/lammps_export.hpp"
+#include "hgridlab/io/packing_file.hpp"
+#include "hgridlab/io/peer_settings.hpp"
+#include "hgridlab/io/viewer_files.hpp"
+#include "hgridlab/calibration/k_choice.hpp"
+#include "hgridlab/io/packing_cache.hpp"
+#include "hgridlab/advice/recommend.hpp"
+#include "hgridlab/packing/grid_placement.hpp"
 
 namespace hgrid::cli {
 namespace {

@@ -2,8 +2,8 @@
 #include <cstdio>
 #include <memory>
 
-#include "cli/common.hpp"
-#include "measure/fields.hpp"
+#include "common.hpp"
+#include "hgridlab/measure/fields.hpp"
 
 namespace hgrid::cli {
 

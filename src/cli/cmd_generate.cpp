@@ -4,12 +4,12 @@
 #include <iostream>
 #include <memory>
 
-#include "cli/common.hpp"
-#include "base/error.hpp"
-#include "base/threads.hpp"
-#include "packing/generate.hpp"
-#include "io/packing_file.hpp"
-#include "io/packing_cache.hpp"
+#include "common.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/base/threads.hpp"
+#include "hgridlab/packing/generate.hpp"
+#include "hgridlab/io/packing_file.hpp"
+#include "hgridlab/io/packing_cache.hpp"
 
 namespace hgrid::cli {
 

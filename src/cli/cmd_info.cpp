@@ -4,12 +4,12 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "cli/common.hpp"
-#include "base/error.hpp"
-#include "packing/generate.hpp"
-#include "packing/rcp.hpp"
-#include "io/packing_file.hpp"
-#include "io/particle_file.hpp"
+#include "common.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/packing/generate.hpp"
+#include "hgridlab/packing/rcp.hpp"
+#include "hgridlab/io/packing_file.hpp"
+#include "hgridlab/io/particle_file.hpp"
 
 namespace hgrid::cli {
 namespace {

@@ -5,14 +5,14 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "cli/common.hpp"
-#include "advice/model_answer.hpp"
-#include "io/atomic_file.hpp"
-#include "calibration/calibration.hpp"
-#include "packing/generate.hpp"
-#include "model/figures.hpp"
-#include "base/error.hpp"
-#include "io/particle_file.hpp"
+#include "common.hpp"
+#include "hgridlab/advice/model_answer.hpp"
+#include "hgridlab/io/atomic_file.hpp"
+#include "hgridlab/calibration/calibration.hpp"
+#include "hgridlab/packing/generate.hpp"
+#include "hgridlab/model/figures.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/io/particle_file.hpp"
 
 namespace hgrid::cli {
 

@@ -3,10 +3,10 @@
 #include <iostream>
 #include <memory>
 
-#include "calibration/calibration.hpp"
-#include "cli/common.hpp"
-#include "io/atomic_file.hpp"
-#include "model/figures.hpp"
+#include "hgridlab/calibration/calibration.hpp"
+#include "common.hpp"
+#include "hgridlab/io/atomic_file.hpp"
+#include "hgridlab/model/figures.hpp"
 
 namespace hgrid::cli {
 

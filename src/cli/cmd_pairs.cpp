@@ -3,8 +3,8 @@
 #include <memory>
 #include <vector>
 
-#include "cli/grid_options.hpp"
-#include "measure/pairs.hpp"
+#include "grid_options.hpp"
+#include "hgridlab/measure/pairs.hpp"
 
 namespace hgrid::cli {
 namespace {

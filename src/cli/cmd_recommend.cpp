@@ -7,14 +7,14 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "cli/common.hpp"
-#include "calibration/calibration.hpp"
-#include "calibration/k_choice.hpp"
-#include "advice/recommend.hpp"
-#include "advice/recommend_json.hpp"
-#include "base/error.hpp"
-#include "io/particle_file.hpp"
-#include "io/peer_settings.hpp"
+#include "common.hpp"
+#include "hgridlab/calibration/calibration.hpp"
+#include "hgridlab/calibration/k_choice.hpp"
+#include "hgridlab/advice/recommend.hpp"
+#include "hgridlab/advice/recommend_json.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/io/particle_file.hpp"
+#include "hgridlab/io/peer_settings.hpp"
 
 namespace hgrid::cli {
 namespace {

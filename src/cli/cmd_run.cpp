@@ -3,12 +3,12 @@
 #include <memory>
 #include <thread>
 
-#include "cli/common.hpp"
-#include "scenes/dpm_scene.hpp"
-#include "base/error.hpp"
-#include "scenes/runner.hpp"
-#include "mpi/comm.hpp"
-#include "mpi/sweep.hpp"
+#include "common.hpp"
+#include "hgridlab/scenes/dpm_scene.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/scenes/runner.hpp"
+#include "hgridlab/mpi/comm.hpp"
+#include "hgridlab/mpi/sweep.hpp"
 
 namespace hgrid::cli {
 namespace {

@@ -8,9 +8,9 @@
 #include <optional>
 #include <string>
 
-#include "grid/params.hpp"
-#include "base/threads.hpp"
-#include "io/particle_file.hpp"
+#include "hgridlab/grid/params.hpp"
+#include "hgridlab/base/threads.hpp"
+#include "hgridlab/io/particle_file.hpp"
 
 namespace hgrid::cli {
 

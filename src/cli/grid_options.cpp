@@ -1,8 +1,8 @@
-#include "cli/grid_options.hpp"
+#include "grid_options.hpp"
 
-#include "calibration/calibration.hpp"
-#include "io/packing_file.hpp"
-#include "io/particle_file.hpp"
+#include "hgridlab/calibration/calibration.hpp"
+#include "hgridlab/io/packing_file.hpp"
+#include "hgridlab/io/particle_file.hpp"
 
 namespace hgrid::cli {
 

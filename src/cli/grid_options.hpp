@@ -4,10 +4,10 @@
 #include <optional>
 #include <string>
 
-#include "cli/common.hpp"
-#include "grid/params.hpp"
-#include "packing/packing.hpp"
-#include "packing/packing_sizes.hpp"
+#include "common.hpp"
+#include "hgridlab/grid/params.hpp"
+#include "hgridlab/packing/packing.hpp"
+#include "hgridlab/packing/packing_sizes.hpp"
 
 namespace hgrid::cli {
 

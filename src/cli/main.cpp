@@ -8,10 +8,10 @@
 #include <sstream>
 #include <string>
 
-#include "cli/common.hpp"
-#include "base/error.hpp"
-#include "io/provenance.hpp"
-#include "mpi/comm.hpp"
+#include "common.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/io/provenance.hpp"
+#include "hgridlab/mpi/comm.hpp"
 
 namespace hgrid::cli {
 

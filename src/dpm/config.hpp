@@ -4,8 +4,8 @@
 #include <array>
 #include <vector>
 
-#include "grid/geometry.hpp"
-#include "grid/params.hpp"
+#include "hgridlab/grid/geometry.hpp"
+#include "hgridlab/grid/params.hpp"
 
 namespace hgrid::dpm {
 

@@ -36,10 +36,10 @@
 #include <type_traits>
 #include <vector>
 
-#include "dpm/contact_law.hpp"
-#include "dpm/simulation.hpp"
-#include "grid/hgrid.hpp"
-#include "grid/pair_sum.hpp"
+#include "hgridlab/dpm/contact_law.hpp"
+#include "hgridlab/dpm/simulation.hpp"
+#include "hgridlab/grid/hgrid.hpp"
+#include "hgridlab/grid/pair_sum.hpp"
 
 namespace hgrid::dpm {
 

@@ -1,12 +1,12 @@
 // Validation of a DPM config and the one place a composition of effects is chosen.
-#include "dpm/simulation.hpp"
+#include "hgridlab/dpm/simulation.hpp"
 
 #include <cmath>
 #include <string>
 
-#include "dpm/engine.hpp"
-#include "base/error.hpp"
-#include "base/threads.hpp"
+#include "hgridlab/dpm/engine.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/base/threads.hpp"
 
 namespace hgrid::dpm {
 

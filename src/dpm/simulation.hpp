@@ -7,8 +7,8 @@
 #include <memory>
 #include <vector>
 
-#include "dpm/config.hpp"
-#include "packing/packing.hpp"
+#include "hgridlab/dpm/config.hpp"
+#include "hgridlab/packing/packing.hpp"
 
 namespace hgrid::dpm {
 

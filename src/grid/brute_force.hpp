@@ -5,7 +5,7 @@
 #include <span>
 #include <vector>
 
-#include "grid/geometry.hpp"
+#include "hgridlab/grid/geometry.hpp"
 
 namespace hgrid {
 

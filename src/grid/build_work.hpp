@@ -8,7 +8,7 @@
 #include <bit>
 #include <cstdint>
 
-#include "grid/detail/levels.hpp"
+#include "hgridlab/grid/detail/levels.hpp"
 
 namespace hgrid {
 

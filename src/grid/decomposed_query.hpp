@@ -9,9 +9,9 @@
 #include <utility>
 #include <vector>
 
-#include "grid/decomposition.hpp"
-#include "grid/hgrid.hpp"
-#include "base/threads.hpp"
+#include "hgridlab/grid/decomposition.hpp"
+#include "hgridlab/grid/hgrid.hpp"
+#include "hgridlab/base/threads.hpp"
 
 namespace hgrid {
 

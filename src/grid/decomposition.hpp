@@ -19,8 +19,8 @@
 #include <limits>
 #include <vector>
 
-#include "base/error.hpp"
-#include "grid/geometry.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/grid/geometry.hpp"
 
 namespace hgrid {
 

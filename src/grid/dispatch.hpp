@@ -2,8 +2,8 @@
 #pragma once
 #include <type_traits>
 
-#include "base/error.hpp"
-#include "grid/geometry.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/grid/geometry.hpp"
 
 namespace hgrid {
 

@@ -11,15 +11,15 @@
 #include <utility>
 #include <vector>
 
-#include "grid/build_work.hpp"
-#include "grid/counters.hpp"
-#include "grid/detail/levels.hpp"
-#include "grid/detail/stencil.hpp"
-#include "base/error.hpp"
-#include "grid/geometry.hpp"
-#include "grid/params.hpp"
-#include "base/threads.hpp"
-#include "grid/uninit_vector.hpp"
+#include "hgridlab/grid/build_work.hpp"
+#include "hgridlab/grid/counters.hpp"
+#include "hgridlab/grid/detail/levels.hpp"
+#include "hgridlab/grid/detail/stencil.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/grid/geometry.hpp"
+#include "hgridlab/grid/params.hpp"
+#include "hgridlab/base/threads.hpp"
+#include "hgridlab/grid/uninit_vector.hpp"
 
 namespace hgrid {
 
@@ -443,5 +443,5 @@ class HGrid {
 
 }  // namespace hgrid
 
-#include "grid/detail/hgrid_build.hpp"
-#include "grid/detail/hgrid_query.hpp"
+#include "hgridlab/grid/detail/hgrid_build.hpp"
+#include "hgridlab/grid/detail/hgrid_query.hpp"

@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "grid/detail/radix.hpp"
+#include "hgridlab/grid/detail/radix.hpp"
 
 namespace hgrid::detail {
 

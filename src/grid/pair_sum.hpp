@@ -20,10 +20,10 @@
 #include <exception>
 #include <vector>
 
-#include "grid/detail/parallel.hpp"
-#include "grid/detail/radix.hpp"
-#include "grid/pair_keys.hpp"
-#include "base/threads.hpp"
+#include "hgridlab/grid/detail/parallel.hpp"
+#include "hgridlab/grid/detail/radix.hpp"
+#include "hgridlab/grid/pair_keys.hpp"
+#include "hgridlab/base/threads.hpp"
 
 namespace hgrid {
 

@@ -4,7 +4,7 @@
 #include <string_view>
 #include <vector>
 
-#include "base/error.hpp"
+#include "hgridlab/base/error.hpp"
 
 namespace hgrid {
 

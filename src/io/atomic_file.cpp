@@ -1,4 +1,4 @@
-#include "io/atomic_file.hpp"
+#include "hgridlab/io/atomic_file.hpp"
 
 #include <unistd.h>
 
@@ -7,7 +7,7 @@
 #include <fstream>
 #include <system_error>
 
-#include "base/error.hpp"
+#include "hgridlab/base/error.hpp"
 
 namespace hgrid {
 

@@ -1,9 +1,9 @@
-#include "io/h5.hpp"
+#include "hgridlab/io/h5.hpp"
 
 #include <cstring>
 
-#include "base/error.hpp"
-#include "io/atomic_file.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/io/atomic_file.hpp"
 
 namespace hgrid::detail {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "base/error.hpp"
+#include "hgridlab/base/error.hpp"
 
 namespace hgrid::detail {
 

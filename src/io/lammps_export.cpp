@@ -1,4 +1,4 @@
-#include "io/lammps_export.hpp"
+#include "hgridlab/io/lammps_export.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,10 +8,10 @@
 #include <sstream>
 #include <unistd.h>
 
-#include "base/error.hpp"
-#include "io/provenance.hpp"
-#include "io/atomic_file.hpp"
-#include "io/peer_settings.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/io/provenance.hpp"
+#include "hgridlab/io/atomic_file.hpp"
+#include "hgridlab/io/peer_settings.hpp"
 
 namespace hgrid {
 namespace {

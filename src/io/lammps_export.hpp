@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "packing/packing.hpp"
+#include "hgridlab/packing/packing.hpp"
 
 namespace hgrid {
 

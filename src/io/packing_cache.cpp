@@ -1,4 +1,4 @@
-#include "io/packing_cache.hpp"
+#include "hgridlab/io/packing_cache.hpp"
 
 #include <cinttypes>
 #include <cstdio>
@@ -7,9 +7,9 @@
 #include <iostream>
 #include <optional>
 
-#include "base/error.hpp"
-#include "io/atomic_file.hpp"
-#include "io/packing_file.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/io/atomic_file.hpp"
+#include "hgridlab/io/packing_file.hpp"
 
 namespace hgrid {
 

@@ -2,7 +2,7 @@
 #pragma once
 #include <string>
 
-#include "packing/generate.hpp"
+#include "hgridlab/packing/generate.hpp"
 
 namespace hgrid {
 

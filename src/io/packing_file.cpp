@@ -15,12 +15,12 @@
 #include <sstream>
 #include <string>
 
-#include "io/h5.hpp"
-#include "base/error.hpp"
-#include "io/packing_file.hpp"
-#include "io/detail/text_lines.hpp"
-#include "io/particle_file.hpp"
-#include "io/provenance.hpp"
+#include "hgridlab/io/h5.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/io/packing_file.hpp"
+#include "hgridlab/io/detail/text_lines.hpp"
+#include "hgridlab/io/particle_file.hpp"
+#include "hgridlab/io/provenance.hpp"
 
 namespace hgrid {
 

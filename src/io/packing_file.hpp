@@ -5,7 +5,7 @@
 #include <optional>
 #include <string>
 
-#include "packing/packing.hpp"
+#include "hgridlab/packing/packing.hpp"
 
 namespace hgrid {
 

@@ -1,16 +1,16 @@
 // Particle files of every supported format: detection and the common type.
-#include "io/particle_file.hpp"
+#include "hgridlab/io/particle_file.hpp"
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
-#include "base/error.hpp"
-#include "io/detail/lammps_reader.hpp"
-#include "io/detail/mercury_reader.hpp"
-#include "io/detail/table_reader.hpp"
-#include "io/detail/text_lines.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/io/detail/lammps_reader.hpp"
+#include "hgridlab/io/detail/mercury_reader.hpp"
+#include "hgridlab/io/detail/table_reader.hpp"
+#include "hgridlab/io/detail/text_lines.hpp"
 
 namespace hgrid {
 namespace {

@@ -12,8 +12,8 @@
 #include <string_view>
 #include <vector>
 
-#include "io/packing_file.hpp"
-#include "packing/packing.hpp"
+#include "hgridlab/io/packing_file.hpp"
+#include "hgridlab/packing/packing.hpp"
 
 namespace hgrid {
 

@@ -1,9 +1,9 @@
-#include "io/peer_settings.hpp"
+#include "hgridlab/io/peer_settings.hpp"
 
 #include <charconv>
 #include <cmath>
 
-#include "io/lammps_export.hpp"
+#include "hgridlab/io/lammps_export.hpp"
 
 namespace hgrid {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "grid/params.hpp"
+#include "hgridlab/grid/params.hpp"
 
 namespace hgrid {
 

@@ -1,6 +1,6 @@
-#include "io/provenance.hpp"
+#include "hgridlab/io/provenance.hpp"
 
-#include "grid/version.hpp"
+#include "hgridlab/grid/version.hpp"
 
 namespace hgrid {
 

@@ -1,8 +1,8 @@
-#include "io/viewer_files.hpp"
+#include "hgridlab/io/viewer_files.hpp"
 
-#include "base/error.hpp"
-#include "io/atomic_file.hpp"
-#include "io/peer_settings.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/io/atomic_file.hpp"
+#include "hgridlab/io/peer_settings.hpp"
 
 namespace hgrid {
 namespace {

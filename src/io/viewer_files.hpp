@@ -4,8 +4,8 @@
 #pragma once
 #include <string>
 
-#include "packing/grid_placement.hpp"
-#include "packing/packing.hpp"
+#include "hgridlab/packing/grid_placement.hpp"
+#include "hgridlab/packing/packing.hpp"
 
 namespace hgrid {
 

@@ -1,12 +1,12 @@
-#include "measure/balance.hpp"
+#include "hgridlab/measure/balance.hpp"
 
 #include <algorithm>
 #include <functional>
 #include <numeric>
 #include <queue>
 
-#include "grid/dispatch.hpp"
-#include "grid/hgrid.hpp"
+#include "hgridlab/grid/dispatch.hpp"
+#include "hgridlab/grid/hgrid.hpp"
 
 namespace hgrid {
 

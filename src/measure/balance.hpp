@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "grid/params.hpp"
-#include "model/time_model.hpp"
-#include "packing/packing.hpp"
+#include "hgridlab/grid/params.hpp"
+#include "hgridlab/model/time_model.hpp"
+#include "hgridlab/packing/packing.hpp"
 
 namespace hgrid {
 

@@ -1,4 +1,4 @@
-#include "measure/fields.hpp"
+#include "hgridlab/measure/fields.hpp"
 
 #include <algorithm>
 #include <cstdarg>

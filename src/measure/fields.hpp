@@ -10,7 +10,7 @@
 #include <variant>
 #include <vector>
 
-#include "measure/measurement.hpp"
+#include "hgridlab/measure/measurement.hpp"
 
 namespace hgrid {
 

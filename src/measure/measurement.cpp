@@ -1,16 +1,16 @@
-#include "measure/measurement.hpp"
+#include "hgridlab/measure/measurement.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
-#include "grid/dispatch.hpp"
-#include "base/error.hpp"
-#include "grid/hgrid.hpp"
-#include "io/particle_file.hpp"
-#include "model/cell_sizes.hpp"
-#include "model/distribution.hpp"
-#include "packing/packing_model.hpp"
+#include "hgridlab/grid/dispatch.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/grid/hgrid.hpp"
+#include "hgridlab/io/particle_file.hpp"
+#include "hgridlab/model/cell_sizes.hpp"
+#include "hgridlab/model/distribution.hpp"
+#include "hgridlab/packing/packing_model.hpp"
 
 namespace hgrid {
 namespace {

@@ -11,11 +11,11 @@
 #include <string>
 #include <vector>
 
-#include "grid/counters.hpp"
-#include "grid/params.hpp"
-#include "model/excluded.hpp"
-#include "model/time_model.hpp"
-#include "packing/packing.hpp"
+#include "hgridlab/grid/counters.hpp"
+#include "hgridlab/grid/params.hpp"
+#include "hgridlab/model/excluded.hpp"
+#include "hgridlab/model/time_model.hpp"
+#include "hgridlab/packing/packing.hpp"
 
 namespace hgrid {
 

@@ -5,10 +5,10 @@
 #include <cstdint>
 #include <span>
 
-#include "grid/brute_force.hpp"
-#include "grid/dispatch.hpp"
-#include "grid/hgrid.hpp"
-#include "packing/packing.hpp"
+#include "hgridlab/grid/brute_force.hpp"
+#include "hgridlab/grid/dispatch.hpp"
+#include "hgridlab/grid/hgrid.hpp"
+#include "hgridlab/packing/packing.hpp"
 
 namespace hgrid {
 

@@ -1,12 +1,12 @@
 // Cell-size methods (docs/MODEL.md section 4) and the search for L*.
-#include "model/cell_sizes.hpp"
+#include "hgridlab/model/cell_sizes.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "model/detail/model_sizes.hpp"
-#include "base/error.hpp"
+#include "hgridlab/model/detail/model_sizes.hpp"
+#include "hgridlab/base/error.hpp"
 
 namespace hgrid {
 

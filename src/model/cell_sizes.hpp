@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "model/distribution.hpp"
-#include "model/model.hpp"
+#include "hgridlab/model/distribution.hpp"
+#include "hgridlab/model/model.hpp"
 
 namespace hgrid {
 

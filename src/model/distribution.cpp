@@ -1,5 +1,5 @@
 // Distribution base class (quadrature, inverse-CDF sampling) and PowerLaw.
-#include "model/distribution.hpp"
+#include "hgridlab/model/distribution.hpp"
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
@@ -10,8 +10,8 @@
 #include <random>
 #include <string>
 
-#include "model/detail/dist_math.hpp"
-#include "base/error.hpp"
+#include "hgridlab/model/detail/dist_math.hpp"
+#include "hgridlab/base/error.hpp"
 
 namespace hgrid {
 

@@ -1,5 +1,5 @@
 // Excluded-volume cost model (docs/MODEL.md section 8).
-#include "model/excluded.hpp"
+#include "hgridlab/model/excluded.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,12 +8,12 @@
 #include <numbers>
 #include <string>
 
-#include "base/error.hpp"
-#include "grid/geometry.hpp"
-#include "model/detail/py_mixture.hpp"
-#include "model/detail/py_numeric.hpp"
-#include "model/detail/walls.hpp"
-#include "model/detail/window.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/grid/geometry.hpp"
+#include "hgridlab/model/detail/py_mixture.hpp"
+#include "hgridlab/model/detail/py_numeric.hpp"
+#include "hgridlab/model/detail/walls.hpp"
+#include "hgridlab/model/detail/window.hpp"
 
 namespace hgrid {
 

@@ -1,5 +1,5 @@
 // Data of Figs. 2-10 (docs/MODEL.md section 6) and Fig. 13 (accuracy vs time).
-#include "model/figures.hpp"
+#include "hgridlab/model/figures.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -15,8 +15,8 @@
 #include <thread>
 #include <vector>
 
-#include "model/cell_sizes.hpp"
-#include "base/error.hpp"
+#include "hgridlab/model/cell_sizes.hpp"
+#include "hgridlab/base/error.hpp"
 
 namespace hgrid {
 

@@ -6,7 +6,7 @@
 #include <ostream>
 #include <string>
 
-#include "model/time_model.hpp"
+#include "hgridlab/model/time_model.hpp"
 
 namespace hgrid {
 

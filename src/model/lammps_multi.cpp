@@ -1,11 +1,11 @@
-#include "model/lammps_multi.hpp"
+#include "hgridlab/model/lammps_multi.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "base/error.hpp"
-#include "model/detail/coordinate_search.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/model/detail/coordinate_search.hpp"
 
 namespace hgrid {
 namespace {

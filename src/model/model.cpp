@@ -1,11 +1,11 @@
 // Public entry points of the cost model: validation and evaluation.
-#include "model/model.hpp"
+#include "hgridlab/model/model.hpp"
 
 #include <cmath>
 #include <string>
 
-#include "model/detail/model_cost.hpp"
-#include "base/error.hpp"
+#include "hgridlab/model/detail/model_cost.hpp"
+#include "hgridlab/base/error.hpp"
 
 namespace hgrid {
 

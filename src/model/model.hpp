@@ -2,8 +2,8 @@
 #pragma once
 #include <vector>
 
-#include "model/distribution.hpp"
-#include "grid/params.hpp"
+#include "hgridlab/model/distribution.hpp"
+#include "hgridlab/grid/params.hpp"
 
 namespace hgrid {
 

@@ -1,15 +1,15 @@
 // The time model's terms: counted (from a counted query) and expected (from
 // the cost model's integrals); the time-optimal cell sizes. docs/MODEL.md section 9.
-#include "model/time_model.hpp"
+#include "hgridlab/model/time_model.hpp"
 
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <limits>
 
-#include "grid/geometry.hpp"
-#include "model/cell_sizes.hpp"
-#include "model/detail/coordinate_search.hpp"
+#include "hgridlab/grid/geometry.hpp"
+#include "hgridlab/model/cell_sizes.hpp"
+#include "hgridlab/model/detail/coordinate_search.hpp"
 
 namespace hgrid {
 

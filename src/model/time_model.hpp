@@ -9,10 +9,10 @@
 #include <string_view>
 #include <vector>
 
-#include "grid/build_work.hpp"
-#include "grid/counters.hpp"
-#include "model/distribution.hpp"
-#include "model/model.hpp"
+#include "hgridlab/grid/build_work.hpp"
+#include "hgridlab/grid/counters.hpp"
+#include "hgridlab/model/distribution.hpp"
+#include "hgridlab/model/model.hpp"
 
 namespace hgrid {
 

@@ -2,8 +2,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "base/error.hpp"
-#include "mpi/comm.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/mpi/comm.hpp"
 
 namespace hgrid::mpi {
 

@@ -10,7 +10,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "grid/uninit_vector.hpp"
+#include "hgridlab/grid/uninit_vector.hpp"
 
 namespace hgrid::mpi {
 

@@ -1,4 +1,4 @@
-#include "mpi/decomposed.hpp"
+#include "hgridlab/mpi/decomposed.hpp"
 
 #include <sys/resource.h>
 
@@ -9,10 +9,10 @@
 #include <type_traits>
 #include <vector>
 
-#include "grid/decomposed_query.hpp"
-#include "grid/dispatch.hpp"
-#include "io/packing_file.hpp"
-#include "mpi/comm.hpp"
+#include "hgridlab/grid/decomposed_query.hpp"
+#include "hgridlab/grid/dispatch.hpp"
+#include "hgridlab/io/packing_file.hpp"
+#include "hgridlab/mpi/comm.hpp"
 
 namespace hgrid::mpi {
 namespace {

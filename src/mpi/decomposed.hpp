@@ -11,9 +11,9 @@
 #include <utility>
 #include <vector>
 
-#include "grid/counters.hpp"
-#include "grid/geometry.hpp"
-#include "grid/params.hpp"
+#include "hgridlab/grid/counters.hpp"
+#include "hgridlab/grid/geometry.hpp"
+#include "hgridlab/grid/params.hpp"
 
 namespace hgrid::mpi {
 

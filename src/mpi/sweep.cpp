@@ -1,4 +1,4 @@
-#include "mpi/sweep.hpp"
+#include "hgridlab/mpi/sweep.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -6,11 +6,11 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "scenes/journal.hpp"
-#include "scenes/result_files.hpp"
-#include "base/error.hpp"
-#include "io/atomic_file.hpp"
-#include "mpi/comm.hpp"
+#include "hgridlab/scenes/journal.hpp"
+#include "hgridlab/scenes/result_files.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/io/atomic_file.hpp"
+#include "hgridlab/mpi/comm.hpp"
 
 namespace hgrid::mpi {
 namespace {

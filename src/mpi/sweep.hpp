@@ -4,7 +4,7 @@
 #pragma once
 #include <vector>
 
-#include "scenes/runner.hpp"
+#include "hgridlab/scenes/runner.hpp"
 
 namespace hgrid::mpi {
 

@@ -1,4 +1,4 @@
-#include "packing/generate.hpp"
+#include "hgridlab/packing/generate.hpp"
 
 #include <algorithm>
 #include <cinttypes>
@@ -10,17 +10,17 @@
 #include <optional>
 #include <string>
 
-#include "base/threads.hpp"
-#include "packing/detail/gen_common.hpp"
-#include "packing/detail/gen_equilibrate.hpp"
-#include "packing/detail/gen_relax.hpp"
-#include "packing/detail/gen_rsa.hpp"
-#include "packing/detail/gen_stationary.hpp"
-#include "grid/dispatch.hpp"
-#include "base/error.hpp"
-#include "grid/hgrid.hpp"
-#include "packing/packing_sizes.hpp"
-#include "packing/rcp.hpp"
+#include "hgridlab/base/threads.hpp"
+#include "hgridlab/packing/detail/gen_common.hpp"
+#include "hgridlab/packing/detail/gen_equilibrate.hpp"
+#include "hgridlab/packing/detail/gen_relax.hpp"
+#include "hgridlab/packing/detail/gen_rsa.hpp"
+#include "hgridlab/packing/detail/gen_stationary.hpp"
+#include "hgridlab/grid/dispatch.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/grid/hgrid.hpp"
+#include "hgridlab/packing/packing_sizes.hpp"
+#include "hgridlab/packing/rcp.hpp"
 
 namespace hgrid {
 namespace {

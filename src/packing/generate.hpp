@@ -8,8 +8,8 @@
 #include <memory>
 #include <string>
 
-#include "model/distribution.hpp"
-#include "packing/packing.hpp"
+#include "hgridlab/model/distribution.hpp"
+#include "hgridlab/packing/packing.hpp"
 
 namespace hgrid {
 

@@ -1,7 +1,7 @@
-#include "packing/grid_placement.hpp"
+#include "hgridlab/packing/grid_placement.hpp"
 
-#include "grid/dispatch.hpp"
-#include "grid/hgrid.hpp"
+#include "hgridlab/grid/dispatch.hpp"
+#include "hgridlab/grid/hgrid.hpp"
 
 namespace hgrid {
 

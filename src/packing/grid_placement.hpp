@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "grid/params.hpp"
-#include "packing/packing.hpp"
+#include "hgridlab/grid/params.hpp"
+#include "hgridlab/packing/packing.hpp"
 
 namespace hgrid {
 

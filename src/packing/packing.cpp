@@ -1,6 +1,6 @@
 // The packing type: its packing fraction and its validation.
 
-#include "packing/packing.hpp"
+#include "hgridlab/packing/packing.hpp"
 
 #include <unistd.h>
 
@@ -9,7 +9,7 @@
 #include <fstream>
 #include <string>
 
-#include "base/error.hpp"
+#include "hgridlab/base/error.hpp"
 
 namespace hgrid {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "grid/geometry.hpp"
+#include "hgridlab/grid/geometry.hpp"
 
 namespace hgrid {
 

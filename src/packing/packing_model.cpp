@@ -1,9 +1,9 @@
-#include "packing/packing_model.hpp"
+#include "hgridlab/packing/packing_model.hpp"
 
-#include "base/error.hpp"
-#include "model/distribution.hpp"
-#include "model/excluded.hpp"
-#include "base/progress.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/model/distribution.hpp"
+#include "hgridlab/model/excluded.hpp"
+#include "hgridlab/base/progress.hpp"
 
 namespace hgrid {
 

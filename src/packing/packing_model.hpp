@@ -5,10 +5,10 @@
 #include <string>
 #include <vector>
 
-#include "model/distribution.hpp"
-#include "model/excluded.hpp"
-#include "model/model.hpp"
-#include "packing/packing.hpp"
+#include "hgridlab/model/distribution.hpp"
+#include "hgridlab/model/excluded.hpp"
+#include "hgridlab/model/model.hpp"
+#include "hgridlab/packing/packing.hpp"
 
 namespace hgrid {
 

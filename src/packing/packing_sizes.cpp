@@ -1,14 +1,14 @@
-#include "packing/packing_sizes.hpp"
+#include "hgridlab/packing/packing_sizes.hpp"
 
 #include <algorithm>
 #include <array>
 
-#include "model/cell_sizes.hpp"
-#include "model/distribution.hpp"
-#include "model/excluded.hpp"
-#include "base/progress.hpp"
-#include "base/error.hpp"
-#include "grid/geometry.hpp"
+#include "hgridlab/model/cell_sizes.hpp"
+#include "hgridlab/model/distribution.hpp"
+#include "hgridlab/model/excluded.hpp"
+#include "hgridlab/base/progress.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/grid/geometry.hpp"
 
 namespace hgrid {
 

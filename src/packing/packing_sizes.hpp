@@ -4,11 +4,11 @@
 #include <string>
 #include <vector>
 
-#include "model/cell_sizes.hpp"
-#include "model/excluded.hpp"
-#include "model/time_model.hpp"
-#include "packing/packing.hpp"
-#include "grid/params.hpp"
+#include "hgridlab/model/cell_sizes.hpp"
+#include "hgridlab/model/excluded.hpp"
+#include "hgridlab/model/time_model.hpp"
+#include "hgridlab/packing/packing.hpp"
+#include "hgridlab/grid/params.hpp"
 
 namespace hgrid {
 

@@ -1,9 +1,9 @@
-#include "packing/rcp.hpp"
+#include "hgridlab/packing/rcp.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "base/error.hpp"
+#include "hgridlab/base/error.hpp"
 
 namespace hgrid {
 

@@ -22,7 +22,7 @@
 #pragma once
 #include <vector>
 
-#include "model/distribution.hpp"
+#include "hgridlab/model/distribution.hpp"
 
 namespace hgrid {
 

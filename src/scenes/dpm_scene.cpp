@@ -2,10 +2,10 @@
 // initial state simulated with the model's optimal Top-Down HGrid and with
 // the linked-cell method (one level), timing the whole run and its contact
 // detection; kinetic energy against time; the model's predicted speed-up.
-#include "scenes/dpm_scene.hpp"
+#include "hgridlab/scenes/dpm_scene.hpp"
 
-#include "calibration/calibration.hpp"
-#include "model/time_model.hpp"
+#include "hgridlab/calibration/calibration.hpp"
+#include "hgridlab/model/time_model.hpp"
 
 #include <chrono>
 #include <filesystem>
@@ -14,19 +14,19 @@
 #include <random>
 #include <nlohmann/json.hpp>
 
-#include "model/cell_sizes.hpp"
-#include "model/distribution.hpp"
-#include "dpm/haff.hpp"
-#include "scenes/dpm_scene_file.hpp"
-#include "dpm/simulation.hpp"
-#include "grid/hgrid.hpp"
-#include "base/threads.hpp"
-#include "model/model.hpp"
-#include "io/provenance.hpp"
-#include "io/packing_cache.hpp"
-#include "io/atomic_file.hpp"
-#include "io/h5.hpp"
-#include "base/progress.hpp"
+#include "hgridlab/model/cell_sizes.hpp"
+#include "hgridlab/model/distribution.hpp"
+#include "hgridlab/dpm/haff.hpp"
+#include "hgridlab/scenes/dpm_scene_file.hpp"
+#include "hgridlab/dpm/simulation.hpp"
+#include "hgridlab/grid/hgrid.hpp"
+#include "hgridlab/base/threads.hpp"
+#include "hgridlab/model/model.hpp"
+#include "hgridlab/io/provenance.hpp"
+#include "hgridlab/io/packing_cache.hpp"
+#include "hgridlab/io/atomic_file.hpp"
+#include "hgridlab/io/h5.hpp"
+#include "hgridlab/base/progress.hpp"
 
 namespace hgrid::dpm {
 namespace {

@@ -2,7 +2,7 @@
 #pragma once
 #include <string>
 
-#include "scenes/runner.hpp"
+#include "hgridlab/scenes/runner.hpp"
 
 namespace hgrid::dpm {
 

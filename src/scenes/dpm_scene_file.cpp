@@ -1,4 +1,4 @@
-#include "scenes/dpm_scene_file.hpp"
+#include "hgridlab/scenes/dpm_scene_file.hpp"
 
 #include <algorithm>
 #include <map>
@@ -6,11 +6,11 @@
 #include <sstream>
 #include <toml++/toml.h>
 
-#include "calibration/calibration.hpp"
-#include "scenes/detail/scene_reader.hpp"
+#include "hgridlab/calibration/calibration.hpp"
+#include "hgridlab/scenes/detail/scene_reader.hpp"
 
-#include "base/error.hpp"
-#include "base/threads.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/base/threads.hpp"
 
 namespace hgrid::dpm {
 namespace {

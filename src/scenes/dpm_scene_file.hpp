@@ -4,9 +4,9 @@
 #include <cstdint>
 #include <string>
 
-#include "dpm/config.hpp"
-#include "model/cell_sizes.hpp"
-#include "packing/generate.hpp"
+#include "hgridlab/dpm/config.hpp"
+#include "hgridlab/model/cell_sizes.hpp"
+#include "hgridlab/packing/generate.hpp"
 
 namespace hgrid::dpm {
 

@@ -1,4 +1,4 @@
-#include "scenes/journal.hpp"
+#include "hgridlab/scenes/journal.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -7,9 +7,9 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "scenes/detail/results.hpp"
-#include "io/packing_cache.hpp"
-#include "base/error.hpp"
+#include "hgridlab/scenes/detail/results.hpp"
+#include "hgridlab/io/packing_cache.hpp"
+#include "hgridlab/base/error.hpp"
 
 namespace hgrid {
 namespace {

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "scenes/runner.hpp"
+#include "hgridlab/scenes/runner.hpp"
 
 namespace hgrid {
 

@@ -1,4 +1,4 @@
-#include "scenes/runner.hpp"
+#include "hgridlab/scenes/runner.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -11,14 +11,14 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "scenes/detail/results.hpp"
-#include "scenes/journal.hpp"
-#include "scenes/result_files.hpp"
-#include "io/atomic_file.hpp"
-#include "base/threads.hpp"
-#include "packing/packing_sizes.hpp"
-#include "base/progress.hpp"
-#include "io/packing_cache.hpp"
+#include "hgridlab/scenes/detail/results.hpp"
+#include "hgridlab/scenes/journal.hpp"
+#include "hgridlab/scenes/result_files.hpp"
+#include "hgridlab/io/atomic_file.hpp"
+#include "hgridlab/base/threads.hpp"
+#include "hgridlab/packing/packing_sizes.hpp"
+#include "hgridlab/base/progress.hpp"
+#include "hgridlab/io/packing_cache.hpp"
 
 namespace hgrid {
 namespace {

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "measure/measurement.hpp"
-#include "scenes/scene.hpp"
+#include "hgridlab/measure/measurement.hpp"
+#include "hgridlab/scenes/scene.hpp"
 
 namespace hgrid {
 

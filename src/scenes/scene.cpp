@@ -1,4 +1,4 @@
-#include "scenes/scene.hpp"
+#include "hgridlab/scenes/scene.hpp"
 
 #include <cmath>
 #include <limits>
@@ -10,10 +10,10 @@
 #include <utility>
 #include <toml++/toml.h>
 
-#include "calibration/calibration.hpp"
-#include "scenes/detail/scene_reader.hpp"
+#include "hgridlab/calibration/calibration.hpp"
+#include "hgridlab/scenes/detail/scene_reader.hpp"
 
-#include "base/error.hpp"
+#include "hgridlab/base/error.hpp"
 
 namespace hgrid {
 namespace {

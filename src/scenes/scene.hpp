@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "model/cell_sizes.hpp"
-#include "packing/generate.hpp"
-#include "grid/params.hpp"
+#include "hgridlab/model/cell_sizes.hpp"
+#include "hgridlab/packing/generate.hpp"
+#include "hgridlab/grid/params.hpp"
 
 namespace hgrid {
 

@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "grid/hgrid.hpp"
-#include "grid/version.hpp"
+#include <hgridlab/grid/hgrid.hpp>
+#include <hgridlab/grid/version.hpp>
 
 int main() {
   using namespace hgrid;

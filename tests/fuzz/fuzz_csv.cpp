@@ -5,8 +5,8 @@
 #include <sstream>
 #include <string>
 
-#include "base/error.hpp"
-#include "io/packing_file.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/io/packing_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::istringstream in(std::string(reinterpret_cast<const char*>(data), size));

@@ -13,8 +13,8 @@
 #include <fstream>
 #include <string>
 
-#include "base/error.hpp"
-#include "io/packing_file.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/io/packing_file.hpp"
 
 constexpr double kFuzzReadSeconds = 0.05;
 

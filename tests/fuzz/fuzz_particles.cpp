@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string_view>
 
-#include "base/error.hpp"
-#include "io/particle_file.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/io/particle_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {

@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <string>
 
-#include "scenes/scene.hpp"
-#include "base/error.hpp"
+#include "hgridlab/scenes/scene.hpp"
+#include "hgridlab/base/error.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "grid/detail/parallel.hpp"
-#include "grid/detail/radix.hpp"
+#include "hgridlab/grid/detail/parallel.hpp"
+#include "hgridlab/grid/detail/radix.hpp"
 
 namespace hgrid {
 

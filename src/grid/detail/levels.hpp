@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "base/error.hpp"
-#include "grid/geometry.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/grid/geometry.hpp"
 
 namespace hgrid::detail {
 

@@ -4,7 +4,7 @@
 #include <array>
 #include <cstdint>
 
-#include "grid/detail/levels.hpp"
+#include "hgridlab/grid/detail/levels.hpp"
 
 namespace hgrid::detail {
 

@@ -1,11 +1,11 @@
-#include "io/detail/lammps_reader.hpp"
+#include "hgridlab/io/detail/lammps_reader.hpp"
 
 #include <algorithm>
 #include <optional>
 
-#include "base/error.hpp"
-#include "io/detail/table_reader.hpp"
-#include "io/detail/text_lines.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/io/detail/table_reader.hpp"
+#include "hgridlab/io/detail/text_lines.hpp"
 
 namespace hgrid::detail {
 namespace {

@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-#include "io/particle_file.hpp"
+#include "hgridlab/io/particle_file.hpp"
 
 namespace hgrid::detail {
 

@@ -1,11 +1,11 @@
-#include "io/detail/mercury_reader.hpp"
+#include "hgridlab/io/detail/mercury_reader.hpp"
 
 #include <array>
 #include <cmath>
 #include <vector>
 
-#include "base/error.hpp"
-#include "io/detail/text_lines.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/io/detail/text_lines.hpp"
 
 namespace hgrid::detail {
 namespace {

@@ -1,10 +1,10 @@
-#include "io/detail/table_reader.hpp"
+#include "hgridlab/io/detail/table_reader.hpp"
 
 #include <algorithm>
 #include <optional>
 
-#include "base/error.hpp"
-#include "io/detail/text_lines.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/io/detail/text_lines.hpp"
 
 namespace hgrid::detail {
 namespace {

@@ -1,10 +1,10 @@
-#include "io/detail/text_lines.hpp"
+#include "hgridlab/io/detail/text_lines.hpp"
 
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
 
-#include "base/error.hpp"
+#include "hgridlab/base/error.hpp"
 
 namespace hgrid::detail {
 

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <string>
 
-#include "model/distribution.hpp"
-#include "base/error.hpp"
+#include "hgridlab/model/distribution.hpp"
+#include "hgridlab/base/error.hpp"
 
 namespace hgrid {
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "model/detail/model_sizes.hpp"
+#include "hgridlab/model/detail/model_sizes.hpp"
 
 namespace hgrid::detail {
 

@@ -1,7 +1,7 @@
 // Cost model T/N (docs/MODEL.md section 3): Eqs. (6), (9)-(16), (19)-(22), (27).
-#include "model/detail/model_cost.hpp"
+#include "hgridlab/model/detail/model_cost.hpp"
 
-#include "grid/geometry.hpp"
+#include "hgridlab/grid/geometry.hpp"
 
 #include <cmath>
 

@@ -4,8 +4,8 @@
 #include <array>
 #include <vector>
 
-#include "model/distribution.hpp"
-#include "model/model.hpp"
+#include "hgridlab/model/distribution.hpp"
+#include "hgridlab/model/model.hpp"
 
 namespace hgrid::detail {
 

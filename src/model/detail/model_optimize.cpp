@@ -11,7 +11,7 @@
 #include <cmath>
 #include <limits>
 
-#include "model/detail/model_sizes.hpp"
+#include "hgridlab/model/detail/model_sizes.hpp"
 
 namespace hgrid::detail {
 

@@ -2,7 +2,7 @@
 #pragma once
 #include <vector>
 
-#include "model/detail/model_cost.hpp"
+#include "hgridlab/model/detail/model_cost.hpp"
 
 namespace hgrid::detail {
 

@@ -1,5 +1,5 @@
 // Percus-Yevick mixture structure (Baxter's Q function); see py_mixture.hpp.
-#include "model/detail/py_mixture.hpp"
+#include "hgridlab/model/detail/py_mixture.hpp"
 
 #include <cmath>
 #include <numbers>

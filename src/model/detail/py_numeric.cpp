@@ -1,5 +1,5 @@
 // Numerical Percus-Yevick mixture (Lado's scheme with Anderson mixing); see py_numeric.hpp.
-#include "model/detail/py_numeric.hpp"
+#include "hgridlab/model/detail/py_numeric.hpp"
 
 #include <gsl/gsl_sf_bessel.h>
 

@@ -1,4 +1,4 @@
-#include "model/detail/walls.hpp"
+#include "hgridlab/model/detail/walls.hpp"
 
 #include <algorithm>
 #include <cmath>

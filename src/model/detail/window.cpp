@@ -1,5 +1,5 @@
 // Search windows and the sine transform; see window.hpp.
-#include "model/detail/window.hpp"
+#include "hgridlab/model/detail/window.hpp"
 
 #include <gsl/gsl_fft_real.h>
 

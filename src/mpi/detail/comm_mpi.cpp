@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "mpi/comm.hpp"
+#include "hgridlab/mpi/comm.hpp"
 
 namespace hgrid::mpi {
 namespace {

@@ -1,7 +1,7 @@
 // mpi/comm.hpp without MPI (CMake found none, or HGRID_MPI=OFF): one rank.
 #include <cstring>
 
-#include "mpi/comm.hpp"
+#include "hgridlab/mpi/comm.hpp"
 
 namespace hgrid::mpi {
 

@@ -6,8 +6,8 @@
 #include <sstream>
 #include <string>
 
-#include "grid/geometry.hpp"
-#include "base/progress.hpp"
+#include "hgridlab/grid/geometry.hpp"
+#include "hgridlab/base/progress.hpp"
 
 namespace hgrid::detail {
 

@@ -1,11 +1,11 @@
-#include "packing/detail/gen_equilibrate.hpp"
+#include "hgridlab/packing/detail/gen_equilibrate.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
-#include "base/threads.hpp"
-#include "packing/detail/gen_insert_grid.hpp"
+#include "hgridlab/base/threads.hpp"
+#include "hgridlab/packing/detail/gen_insert_grid.hpp"
 
 namespace hgrid::detail {
 namespace {

@@ -33,8 +33,8 @@
 #include <string>
 #include <vector>
 
-#include "packing/detail/gen_common.hpp"
-#include "grid/geometry.hpp"
+#include "hgridlab/packing/detail/gen_common.hpp"
+#include "hgridlab/grid/geometry.hpp"
 
 namespace hgrid::detail {
 

@@ -15,7 +15,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "grid/geometry.hpp"
+#include "hgridlab/grid/geometry.hpp"
 
 namespace hgrid::detail {
 

@@ -7,8 +7,8 @@
 #include <span>
 #include <vector>
 
-#include "grid/hgrid.hpp"
-#include "grid/pair_sum.hpp"
+#include "hgridlab/grid/hgrid.hpp"
+#include "hgridlab/grid/pair_sum.hpp"
 
 namespace hgrid::detail {
 

@@ -4,9 +4,9 @@
 #include <numeric>
 #include <vector>
 
-#include "packing/detail/gen_common.hpp"
-#include "packing/detail/gen_pairs.hpp"
-#include "packing/generate.hpp"
+#include "hgridlab/packing/detail/gen_common.hpp"
+#include "hgridlab/packing/detail/gen_pairs.hpp"
+#include "hgridlab/packing/generate.hpp"
 
 namespace hgrid {
 namespace {

@@ -15,7 +15,7 @@
 // partner's force only if the partner is in the range. Every sphere sees the
 // same additions in the same order, so the packing does not depend on the
 // number of threads. The FIRE sums (power, norms) stay one ordered loop.
-#include "packing/detail/gen_relax.hpp"
+#include "hgridlab/packing/detail/gen_relax.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -23,7 +23,7 @@
 #include <cstdio>
 #include <numeric>
 
-#include "packing/detail/gen_pairs.hpp"
+#include "hgridlab/packing/detail/gen_pairs.hpp"
 
 namespace hgrid::detail {
 namespace {

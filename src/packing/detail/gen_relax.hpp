@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "packing/detail/gen_common.hpp"
-#include "grid/geometry.hpp"
+#include "hgridlab/packing/detail/gen_common.hpp"
+#include "hgridlab/grid/geometry.hpp"
 
 namespace hgrid::detail {
 

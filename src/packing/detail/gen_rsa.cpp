@@ -1,11 +1,11 @@
-#include "packing/detail/gen_rsa.hpp"
+#include "hgridlab/packing/detail/gen_rsa.hpp"
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
 
-#include "packing/detail/gen_insert_grid.hpp"
+#include "hgridlab/packing/detail/gen_insert_grid.hpp"
 
 namespace hgrid::detail {
 namespace {

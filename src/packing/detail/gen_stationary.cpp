@@ -1,4 +1,4 @@
-#include "packing/detail/gen_stationary.hpp"
+#include "hgridlab/packing/detail/gen_stationary.hpp"
 
 #include <algorithm>
 #include <cmath>

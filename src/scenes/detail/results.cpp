@@ -1,4 +1,4 @@
-#include "scenes/detail/results.hpp"
+#include "hgridlab/scenes/detail/results.hpp"
 
 #include <cmath>
 #include <ctime>
@@ -7,13 +7,13 @@
 #include <sstream>
 #include <unistd.h>
 
-#include "grid/params.hpp"
-#include "io/h5.hpp"
-#include "packing/generate.hpp"
-#include "packing/packing.hpp"
-#include "io/provenance.hpp"
-#include "io/atomic_file.hpp"
-#include "measure/fields.hpp"
+#include "hgridlab/grid/params.hpp"
+#include "hgridlab/io/h5.hpp"
+#include "hgridlab/packing/generate.hpp"
+#include "hgridlab/packing/packing.hpp"
+#include "hgridlab/io/provenance.hpp"
+#include "hgridlab/io/atomic_file.hpp"
+#include "hgridlab/measure/fields.hpp"
 
 namespace hgrid {
 namespace {

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "scenes/result_files.hpp"
-#include "scenes/runner.hpp"
+#include "hgridlab/scenes/result_files.hpp"
+#include "hgridlab/scenes/runner.hpp"
 
 namespace hgrid::detail {
 

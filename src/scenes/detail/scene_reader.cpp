@@ -1,10 +1,10 @@
-#include "scenes/detail/scene_reader.hpp"
+#include "hgridlab/scenes/detail/scene_reader.hpp"
 
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
-#include "base/error.hpp"
+#include "hgridlab/base/error.hpp"
 
 namespace hgrid::detail {
 
