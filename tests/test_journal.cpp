@@ -9,6 +9,7 @@
 #include "hgridlab/scenes/journal.hpp"
 #include "hgridlab/scenes/result_files.hpp"
 #include "hgridlab/scenes/runner.hpp"
+#include "hgridlab/scenes/run_scene.hpp"
 #include "hgridlab/base/error.hpp"
 #include "cli_support.hpp"
 #include "hgridlab/mpi/comm.hpp"
@@ -111,9 +112,9 @@ TEST_F(Journal, GroupsKeepAPackingOnOneRankAndBalanceTheWork) {
   const ScenePoint p = s.points[0];
   s.points.assign(8, p);
   const std::vector<std::vector<std::size_t>> five{{0}, {1}, {2, 3, 4}, {5}, {6, 7}};
-  EXPECT_EQ(mpi::assign_groups(s, five, 2), (std::vector<int>{1, 0, 0, 1, 1}));
-  EXPECT_EQ(mpi::assign_groups(s, five, 1), (std::vector<int>{0, 0, 0, 0, 0}));
-  EXPECT_EQ(mpi::assign_groups(s, five, 8), (std::vector<int>{2, 3, 0, 4, 1}));
+  EXPECT_EQ(assign_groups(s, five, 2), (std::vector<int>{1, 0, 0, 1, 1}));
+  EXPECT_EQ(assign_groups(s, five, 1), (std::vector<int>{0, 0, 0, 0, 0}));
+  EXPECT_EQ(assign_groups(s, five, 8), (std::vector<int>{2, 3, 0, 4, 1}));
 }
 
 TEST_F(Journal, OneRankSweepIsTheSerialRun) {

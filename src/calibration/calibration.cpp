@@ -109,20 +109,24 @@ std::string calibration_path() {
 }
 
 void save_calibration(const Calibration& c, const std::string& path) {
+  // The file leads with where it was measured, then the time model (what
+  // predicts seconds: count --repeat, recommend --cost time), then the
+  // one-K fit that gives K for T = checks + K accesses (a coarser model of
+  // the wall time: its r2 is not the time model's).
   nlohmann::ordered_json j;
   j["format"] = kFormat;
-  for (const auto& f : kNumbers) j[f.key] = c.*(f.member);
-  j["points"] = c.points;
-  j["units"] = "c0: seconds per particle, c_cell: seconds per cell access, c_test: seconds per narrow-phase check";
-  j["model"] = "query wall time W = c0 N + c_cell A + c_test C; K = c_cell / c_test";
   j["machine"] = c.machine;
   j["date"] = c.date;
   j["git_hash"] = c.git_hash;
   j["compiler"] = c.compiler;
   j["preset"] = c.preset;
-  j["r2_log"] = c.r2_log;
   for (int d = 2; d <= 3; ++d)
     if (const TimeModelFit* t = c.time_model(d)) j["time_model"][std::to_string(d) + "D"] = time_json(*t);
+  j["model"] = "one-K fit, for K: query wall time W = c0 N + c_cell A + c_test C; K = c_cell / c_test";
+  for (const auto& f : kNumbers) j[f.key] = c.*(f.member);
+  j["points"] = c.points;
+  j["units"] = "c0: seconds per particle, c_cell: seconds per cell access, c_test: seconds per narrow-phase check";
+  j["r2_log"] = c.r2_log;
   const std::filesystem::path target(path);
   if (target.has_parent_path()) std::filesystem::create_directories(target.parent_path());
   write_text_atomically(path, j.dump(2) + "\n", "calibration");

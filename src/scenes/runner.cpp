@@ -1,5 +1,7 @@
 #include "hgridlab/scenes/runner.hpp"
 
+#include "hgridlab/scenes/run_scene.hpp"
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -8,6 +10,8 @@
 #include <iostream>
 #include <map>
 #include <mutex>
+#include <numeric>
+#include <sstream>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -137,17 +141,50 @@ std::optional<PointFailure> measure_groups(const Scene& scene, const std::vector
 }
 
 std::vector<PointResult> run_scene(const Scene& scene, const RunOptions& opt) {
-  std::filesystem::create_directories(opt.results_dir);
-  const std::string stem = result_stem(scene, opt);
-  // Temporary files of runs killed before they could remove them.
-  for (const auto& dir : {opt.results_dir, opt.packing_dir}) remove_stale_temporaries(dir, kStaleTemporaryAge);
-  Resumed resumed = resume(scene, stem, opt.progress);
-  const auto failure = measure_groups(scene, group_by_packing(scene, resumed.todo), opt, journal_path(stem),
-                                      "hgrid run " + scene.name, resumed.results);
-  if (failure) std::rethrow_exception(failure->error);
-  write_results(stem, scene, resumed.results);
-  remove_journals(stem);
-  return resumed.results;
+  LocalRun here;
+  return run_scene(scene, opt, here);
+}
+
+std::vector<int> assign_groups(const Scene& scene, const std::vector<std::vector<std::size_t>>& groups, int processes) {
+  std::vector<double> work(groups.size());
+  for (std::size_t g = 0; g < groups.size(); ++g)
+    work[g] =
+        static_cast<double>(scene.points.at(groups[g].front()).packing.n) * static_cast<double>(groups[g].size() + 1);
+  std::vector<std::size_t> order(groups.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return work[a] > work[b]; });
+  std::vector<double> load(static_cast<std::size_t>(std::max(processes, 1)), 0.0);
+  std::vector<int> owner(groups.size());
+  for (std::size_t g : order) {
+    const auto least = std::min_element(load.begin(), load.end());  // the first of equals
+    *least += work[g];
+    owner[g] = static_cast<int>(least - load.begin());
+  }
+  return owner;
+}
+
+void detail::rethrow_naming_point(const Scene& scene, const PointFailure& f) {
+  const std::string where = " [at " + describe_point(scene, f.point) + "]";
+  try {
+    std::rethrow_exception(f.error);
+  } catch (const InputError& e) {
+    throw InputError(e.field(), e.problem() + where);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(e.what() + where);
+  }
+}
+
+std::string detail::indices_text(const std::vector<std::size_t>& v) {
+  std::string out;
+  for (std::size_t i : v) out += std::to_string(i) + ' ';
+  return out;
+}
+
+std::vector<std::size_t> detail::indices_from_text(const std::string& s) {
+  std::istringstream in(s);
+  std::vector<std::size_t> out;
+  for (std::size_t i; in >> i;) out.push_back(i);
+  return out;
 }
 
 std::string results_json(const Scene& scene, const std::vector<PointResult>& results, const RunOptions& opt) {

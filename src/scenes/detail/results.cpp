@@ -241,6 +241,7 @@ std::string result_json_line(const PointResult& r) { return detail::result_to_js
 
 PointResult result_from_json_line(const std::string& line, double K) {
   PointResult r = detail::result_from_json(nlohmann::json::parse(line));
+  r.m.K = K;
   detail::check_result(r, K);
   return r;
 }
