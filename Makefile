@@ -5,7 +5,7 @@ JOBS  ?= $(shell nproc 2>/dev/null || echo 2)
 SCALE ?= default
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: all build test test-python-install test-asan test-clang test-sanitize fuzz figures bench deps clean calibrate calibrate-figure
+.PHONY: all build test test-python-install test-asan test-clang test-sanitize fuzz figures bench mercurydpm deps clean calibrate calibrate-figure
 
 all: build
 
@@ -95,6 +95,12 @@ calibrate-figure: build
 
 bench: build
 	@for b in $(BUILD)/bench_*; do echo "== $$b"; $$b --benchmark_counters_tabular=true || exit 1; done
+
+# MercuryDPM (the authors' code) beside hgridlab on the paper's DPM test:
+# MERCURYDPM_SRC=/path/to/MercuryDPM make mercurydpm  (docs/MERCURYDPM.md)
+mercurydpm: build
+	bash bench/mercurydpm/build.sh
+	python3 bench/mercurydpm/compare.py --hgrid $(BUILD)/hgrid --scale $(or $(SCALE),default)
 
 clean:
 	rm -rf $(BUILD) build-asan build-clang build-fuzz build-sanitize
