@@ -140,6 +140,39 @@ def main():
                 log("  %.1f s" % (time.time() - t0))
                 keep(name, res, res["seconds_total"])
 
+        # MercuryDPM's K: its search of the initial state (no forces) timed
+        # (fastest of 5) and counted at the three grids; seconds = c_access
+        # accesses + c_check candidates, least squares through the origin;
+        # K = c_access / c_check.
+        # (Each run timed and counted the search of its initial state.)
+        probes = {name: best[name][0] for name in sizes}
+        rows = [(p["cell_accesses_initial_state"], p["candidates_initial_state"], p["seconds_search_initial_state"])
+                for p in probes.values()]
+        saa = sum(a_ * a_ for a_, c_, t_ in rows)
+        scc = sum(c_ * c_ for a_, c_, t_ in rows)
+        sac = sum(a_ * c_ for a_, c_, t_ in rows)
+        sat = sum(a_ * t_ for a_, c_, t_ in rows)
+        sct = sum(c_ * t_ for a_, c_, t_ in rows)
+        det = saa * scc - sac * sac
+        c_access = (sat * scc - sct * sac) / det
+        c_check = (sct * saa - sat * sac) / det
+        k_m = c_access / c_check
+        po, pl = probes["mercurydpm_optimal"], probes["mercurydpm_linked_cell"]
+
+        def T(p, K):
+            return p["candidates_initial_state"] + K * p["cell_accesses_initial_state"]
+
+        k_fit = {
+            "seconds_per_cell_access": c_access,
+            "seconds_per_candidate_check": c_check,
+            "K": k_m,
+            "grids": {k: {f: v[f] for f in ("cell_accesses_initial_state", "candidates_initial_state",
+                                          "seconds_search_initial_state")} for k, v in probes.items()},
+            "count_ratio_T_K0.2": T(pl, 0.2) / T(po, 0.2),
+            "count_ratio_T_K_mercurydpm": T(pl, k_m) / T(po, k_m),
+            "measured_search_speedup_initial_state": pl["seconds_search_initial_state"] / po["seconds_search_initial_state"],
+        }
+
     def sec(name, key="seconds_total"):
         return best[name][0][key]
 
@@ -175,6 +208,7 @@ def main():
             "optimal": sec("mercurydpm_optimal") / sec("hgridlab_optimal"),
             "linked_cell": sec("mercurydpm_linked_cell") / sec("hgridlab_linked_cell"),
         },
+        "mercurydpm_K_fit": k_fit,
         "runs": {k: v[0] for k, v in best.items()},
     }
     # The same physics: both codes' kinetic energy at the same sample times.

@@ -16,10 +16,11 @@
 // LinearViscoelasticNormalSpecies.cc) and its demo Drivers/MercurySimpleDemos/
 // FreeCooling2DinWalls.cpp.
 //
-// Prints one JSON object: the grid used, wall times (whole run; the forces
-// loop, which holds contact detection and contact forces; one search of the
-// final state without forces), candidate pairs per step, and the kinetic
-// energy every `sample_every` steps.
+// Prints one JSON object: the grid used; the search of the initial state
+// without forces (its wall time, cell accesses and candidate pairs: what fits
+// MercuryDPM's K); then, for STEPS > 0, wall times (whole run; the forces loop,
+// which holds contact detection and contact forces; one search of the final
+// state), candidate pairs, and the kinetic energy every `sample_every` steps.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -86,7 +87,7 @@ class FreeCooling : public Mercury2D {
   unsigned sample_every = 200;
   std::vector<double> user_sizes;  // empty: MercuryDPM's own distribution
   bool search_only = false;        // computeInternalForce counts candidate pairs instead
-  std::uint64_t candidates = 0;
+  std::uint64_t candidates = 0, overlaps = 0;
   double seconds_forces = 0;
   std::vector<double> t, E;
 
@@ -124,10 +125,11 @@ class FreeCooling : public Mercury2D {
   /// The cell sizes of the HGrid as built.
   std::vector<double> cell_sizes() { return getHGrid()->getCellSizes(); }
 
-  /// One search of the current state, counting candidate pairs (no forces).
+  /// One search of the current state (no forces): candidate pairs, each
+  /// tested for overlap as MercuryDPM's narrow phase does, and counted.
   double time_search() {
     search_only = true;
-    candidates = 0;
+    candidates = overlaps = 0;
     const auto t0 = Clock::now();
     Mercury2D::computeAllForces();
     const double s = since(t0);
@@ -143,8 +145,11 @@ class FreeCooling : public Mercury2D {
   }
 
   void computeInternalForce(BaseParticle* a, BaseParticle* b) override {
-    if (search_only) {
+    if (search_only) {  // the narrow phase's overlap test, no interaction, no force
       ++candidates;
+      const Vec3D d = a->getPosition() - b->getPosition();
+      const Mdouble r = a->getRadius() + b->getRadius();
+      overlaps += d.getLengthSquared() < r * r;
       return;
     }
     Mercury2D::computeInternalForce(a, b);
@@ -155,6 +160,25 @@ class FreeCooling : public Mercury2D {
       t.push_back(getTime());
       E.push_back(getKineticEnergy());
     }
+  }
+};
+
+/// The same run counting MercuryDPM's cell accesses (every cell a search
+/// looks into: MercuryDPM's hGridFindContactsWith(in)TargetCell calls), for
+/// the counts alone: its overrides cost time, so the timings come from a
+/// FreeCooling of the same state.
+class CountingProbe : public FreeCooling {
+ public:
+  std::uint64_t accesses = 0;
+
+ protected:
+  void hGridFindContactsWithinTargetCell(int x, int y, unsigned int l) override {
+    ++accesses;
+    FreeCooling::hGridFindContactsWithinTargetCell(x, y, l);
+  }
+  void hGridFindContactsWithTargetCell(int x, int y, unsigned int l, BaseParticle* obj) override {
+    ++accesses;
+    FreeCooling::hGridFindContactsWithTargetCell(x, y, l, obj);
   }
 };
 
@@ -171,41 +195,30 @@ int main(int argc, char** argv) {
   if (argc < 5)
     fail("usage: free_cooling FILE.xyz STEPS SIZES|default SAMPLE_EVERY [contact_time restitution dt_over_tc speed "
          "velocity_seed]\n  SIZES: cell sizes s1,...,sL in the file's unit (one size: the linked cell); default: "
-         "MercuryDPM's own HGrid");
-  FreeCooling run;
-  run.discs = read_xyz(argv[1], run.lx, run.ly);
+         "MercuryDPM's own HGrid; STEPS 0: the initial state's search alone");
+  std::vector<Disc> discs;
+  double lx = 0, ly = 0;
+  discs = read_xyz(argv[1], lx, ly);
   const long steps = std::atol(argv[2]);
   const std::string grid = argv[3];
-  run.sample_every = static_cast<unsigned>(std::atol(argv[4]));
-  double dt_over_tc = 0.05;
-  if (argc > 5) run.contact_time = std::atof(argv[5]);
-  if (argc > 6) run.restitution = std::atof(argv[6]);
+  const long sample_every = std::atol(argv[4]);
+  double contact_time = 0.05, restitution = 0.8, dt_over_tc = 0.05, speed = 1.0;
+  unsigned velocity_seed = 1;
+  if (argc > 5) contact_time = std::atof(argv[5]);
+  if (argc > 6) restitution = std::atof(argv[6]);
   if (argc > 7) dt_over_tc = std::atof(argv[7]);
-  if (argc > 8) run.speed = std::atof(argv[8]);
-  if (argc > 9) run.velocity_seed = static_cast<unsigned>(std::atol(argv[9]));
-  if (steps < 1 || run.sample_every < 1) fail("STEPS and SAMPLE_EVERY must be >= 1");
-
-  run.setName("hgridlab_free_cooling");
-  run.setFileType(FileType::NO_FILE);
-  run.setSaveCount(static_cast<unsigned>(steps) + 1);
-  run.setGravity(Vec3D(0, 0, 0));
-  run.setDomain(Vec3D(0, 0, 0), Vec3D(run.lx, run.ly, 0));
-  const double dt = dt_over_tc * run.contact_time;
-  run.setTimeStep(dt);
-  run.setTimeMax((static_cast<double>(steps) - 0.5) * dt);
-  run.setHGridMethod(TOPDOWN);
-  run.setHGridCellOverSizeRatio(1.0);
+  if (argc > 8) speed = std::atof(argv[8]);
+  if (argc > 9) velocity_seed = static_cast<unsigned>(std::atol(argv[9]));
+  if (steps < 0 || sample_every < 1) fail("STEPS must be >= 0 and SAMPLE_EVERY >= 1");
+  std::vector<double> user_sizes;
   if (grid != "default") {
-    run.user_sizes = parse_sizes(grid);
-    if (run.user_sizes.empty()) fail("no cell sizes");
+    user_sizes = parse_sizes(grid);
+    if (user_sizes.empty()) fail("no cell sizes");
     // MercuryDPM puts a particle in the first level whose cell is larger than
     // its diameter (HGrid::insertParticleToHgrid): the largest disc, whose
     // diameter equals the top size, needs a top cell a hair larger.
-    run.user_sizes.back() = std::nextafter(run.user_sizes.back(), 1e300) * (1 + 1e-12);
-    run.setHGridDistribution(USER);
-    run.setHGridMaxLevels(static_cast<unsigned>(run.user_sizes.size()));
+    user_sizes.back() = std::nextafter(user_sizes.back(), 1e300) * (1 + 1e-12);
   }
-  run.setHGridUpdateEachTimeStep(true);
   // MercuryDPM's information messages go to stdout, which carries the JSON:
   // dropped (warnings and errors stay).
   static LoggerOutput quiet = *loggerOutput;
@@ -213,24 +226,72 @@ int main(int argc, char** argv) {
   quiet.onVerbose = [](std::string, std::string, Flusher) {};
   loggerOutput = &quiet;
 
-  const auto t0 = Clock::now();
-  run.solve();
-  const double seconds_total = since(t0);
+  const double dt = dt_over_tc * contact_time;
+  // A run of n_steps steps.
+  const auto setup = [&](FreeCooling& run, long n_steps) {
+    run.discs = discs;
+    run.lx = lx, run.ly = ly;
+    run.contact_time = contact_time, run.restitution = restitution, run.speed = speed;
+    run.velocity_seed = velocity_seed;
+    run.sample_every = static_cast<unsigned>(sample_every);
+    run.user_sizes = user_sizes;
+    run.setName("hgridlab_free_cooling");
+    run.setFileType(FileType::NO_FILE);
+    run.setSaveCount(static_cast<unsigned>(n_steps) + 1);
+    run.setGravity(Vec3D(0, 0, 0));
+    run.setDomain(Vec3D(0, 0, 0), Vec3D(lx, ly, 0));
+    run.setTimeStep(dt);
+    run.setTimeMax((static_cast<double>(n_steps) - 0.5) * dt);
+    run.setHGridMethod(TOPDOWN);
+    run.setHGridCellOverSizeRatio(1.0);
+    if (!user_sizes.empty()) {
+      run.setHGridDistribution(USER);
+      run.setHGridMaxLevels(static_cast<unsigned>(user_sizes.size()));
+    }
+    run.setHGridUpdateEachTimeStep(true);
+  };
+  // The search of the initial state (after one step: MercuryDPM builds its
+  // grid in the step): fastest of 5 uncounted, and the counts (cell
+  // accesses, candidate pairs) of a counting probe of the same state.
+  FreeCooling first;
+  setup(first, 1);
+  first.solve();
+  double search_initial = 1e300;
+  for (int k = 0; k < 5; ++k) search_initial = std::min(search_initial, first.time_search());
+  CountingProbe probe;
+  setup(probe, 1);
+  probe.solve();
+  probe.accesses = 0;
+  probe.time_search();
 
-  // One search of the final state without forces, several times (fastest):
-  // contact detection alone, as hgridlab's query.
-  double best_search = 1e300;
-  for (int k = 0; k < 5; ++k) best_search = std::min(best_search, run.time_search());
-  const std::vector<double> cells = run.cell_sizes();
+  FreeCooling run;
+  double seconds_total = 0, best_search = 0;
+  if (steps > 0) {
+    setup(run, steps);
+    const auto t0 = Clock::now();
+    run.solve();
+    seconds_total = since(t0);
+    // One search of the final state without forces, several times (fastest):
+    // contact detection alone, as hgridlab's query.
+    best_search = 1e300;
+    for (int k = 0; k < 5; ++k) best_search = std::min(best_search, run.time_search());
+  }
+  const std::vector<double> cells = first.cell_sizes();
   std::printf("{\"grid\": \"%s\", \"levels\": %zu, \"sizes\": [", grid.c_str(), cells.size());
   for (std::size_t l = 0; l < cells.size(); ++l) std::printf("%s%.9g", l ? ", " : "", cells[l]);
-  std::printf("], \"n\": %zu, \"steps\": %ld, \"dt\": %.9g, \"seconds_total\": %.6f, \"seconds_forces_loop\": %.6f, "
-              "\"seconds_search_final_state\": %.9f, \"candidates_final_state\": %llu, \"t\": [",
-              run.particleHandler.getSize(), steps, dt, seconds_total, run.seconds_forces, best_search,
-              static_cast<unsigned long long>(run.candidates));
-  for (std::size_t i = 0; i < run.t.size(); ++i) std::printf("%s%.6g", i ? ", " : "", run.t[i]);
-  std::printf("], \"E\": [");
-  for (std::size_t i = 0; i < run.E.size(); ++i) std::printf("%s%.10g", i ? ", " : "", run.E[i]);
-  std::printf("]}\n");
+  std::printf("], \"n\": %zu, \"steps\": %ld, \"dt\": %.9g, \"seconds_search_initial_state\": %.9f, "
+              "\"cell_accesses_initial_state\": %llu, \"candidates_initial_state\": %llu",
+              discs.size(), steps, dt, search_initial, static_cast<unsigned long long>(probe.accesses),
+              static_cast<unsigned long long>(probe.candidates));
+  if (steps > 0) {
+    std::printf(", \"seconds_total\": %.6f, \"seconds_forces_loop\": %.6f, \"seconds_search_final_state\": %.9f, "
+                "\"candidates_final_state\": %llu, \"t\": [",
+                seconds_total, run.seconds_forces, best_search, static_cast<unsigned long long>(run.candidates));
+    for (std::size_t i = 0; i < run.t.size(); ++i) std::printf("%s%.6g", i ? ", " : "", run.t[i]);
+    std::printf("], \"E\": [");
+    for (std::size_t i = 0; i < run.E.size(); ++i) std::printf("%s%.10g", i ? ", " : "", run.E[i]);
+    std::printf("]");
+  }
+  std::printf("}\n");
   return 0;
 }
