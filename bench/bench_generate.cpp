@@ -2,6 +2,7 @@
 //   random placement, N = 1e6                         (target <= 1 s)
 //   excluded volume, alpha = -3, omega = 100, nu = 0.6 (target <= 2 min, zero overlap)
 //   excluded volume, alpha = 0, omega = 10, nu = 0.6   (target <= 15 min, max rel. overlap <= 1e-4)
+//   hard-sphere Monte Carlo with swaps, N = 1e5: sweeps/s and moves/s per thread
 // Run one at a time (the peak-memory counter is per process):
 //   build/bench_generate --benchmark_filter='Rsa/1000000/'
 #include <benchmark/benchmark.h>
@@ -50,12 +51,45 @@ void run(benchmark::State& state, double alpha, double omega, Placement placemen
   state.counters["peak_bytes_per_particle"] = peak_rss_bytes() / static_cast<double>(s.n);
 }
 
+/// The hard-sphere Monte Carlo with swaps that equilibrates the packings of
+/// Figs. 11-12 (packing/detail/gen_equilibrate.cpp), from the placed packing
+/// (generated before the timing): N = 10^5, nu = 0.6, alpha = -3, omega =
+/// range(0), on range(1) threads. Counters: sweeps per second and particle
+/// moves (trials) per second and thread: the baseline a faster algorithm
+/// (issue 56: event-chain Monte Carlo) is measured against.
+void BM_MonteCarlo(benchmark::State& state) {
+  constexpr int kSweeps = 20;
+  PackingSpec s;
+  s.d = 3;
+  s.n = 100000;
+  s.nu = 0.6;
+  s.alpha = -3;
+  s.omega = static_cast<double>(state.range(0));
+  s.placement = Placement::excluded;
+  s.seed = kSeed;
+  s.progress = false;
+  const Packing placed = generate_packing(s);
+  PackingSpec e = s;
+  e.equilibrate = true;
+  e.sweeps = kSweeps;
+  e.threads = static_cast<int>(state.range(1));
+  for (auto _ : state) {
+    Packing p = generate_packing(e, &placed);
+    benchmark::DoNotOptimize(p.radii.data());
+  }
+  const double sweeps = static_cast<double>(kSweeps) * static_cast<double>(state.iterations());
+  state.counters["sweeps_per_s"] = benchmark::Counter(sweeps, benchmark::Counter::kIsRate);
+  state.counters["moves_per_s_per_thread"] =
+      benchmark::Counter(sweeps * static_cast<double>(s.n) / static_cast<double>(e.threads), benchmark::Counter::kIsRate);
+}
+
 void BM_Random(benchmark::State& state) { run(state, -3, 100, Placement::random); }
 void BM_Rsa(benchmark::State& state) { run(state, -3, 100, Placement::excluded); }
 void BM_Growth(benchmark::State& state) { run(state, 0, 10, Placement::excluded); }
 
 BENCHMARK(BM_Random)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_Rsa)->Arg(100000)->Arg(1000000)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_MonteCarlo)->Args({10, 1})->Args({10, 2})->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(BM_Growth)->Arg(100000)->Arg(1000000)->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace

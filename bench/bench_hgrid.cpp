@@ -118,7 +118,7 @@ void BM_HGridRebuild(benchmark::State& state) {
   state.counters["workspace_bytes_per_particle"] = static_cast<double>(grid.workspace_bytes()) / n;
 }
 /// Build plus query on T threads (the second argument; 0 = all cores), the
-/// callback counting per thread (grid/threads.hpp). Wall time: the ratio of
+/// callback counting per thread (base/threads.hpp). Wall time: the ratio of
 /// T = 1 to T = 2 at N = 10^6 in one run is the speed-up on two cores.
 void BM_HGridThreads(benchmark::State& state) {
   const auto& f = fixture(static_cast<std::size_t>(state.range(0)));

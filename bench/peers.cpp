@@ -285,7 +285,7 @@ int run(Options o) {
     auto spheres = std::make_shared<std::vector<Sphere<D>>>(s);
     sample_hgrid = [kept, kept_one, spheres, &o](int threads) {
       const auto& grid = threads > 1 ? kept : kept_one;
-      struct alignas(64) Slot {  // pairs counted per thread (grid/threads.hpp)
+      struct alignas(64) Slot {  // pairs counted per thread (base/threads.hpp)
         std::uint64_t n = 0;
       };
       std::vector<Slot> found(static_cast<std::size_t>(threads));

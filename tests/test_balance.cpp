@@ -1,4 +1,4 @@
-// The load-balance simulation (experiment/balance.hpp): the dynamic
+// The load-balance simulation (measure/balance.hpp): the dynamic
 // schedule's makespan on hand-made costs, and the simulation on a packing.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The grid on several threads (grid/threads.hpp): for 1, 2, 3 and 8 threads
+// The grid on several threads (base/threads.hpp): for 1, 2, 3 and 8 threads
 // (8 oversubscribed on a 2-core machine) the same pair SET as an O(N^2)
 // brute force, and counters identical to one thread's, for the build and the
 // query, both search directions, walls and periodic, 2D and 3D; the

@@ -1,5 +1,5 @@
 // The LAMMPS multi cost model (model/lammps_multi.hpp) and its fit
-// (experiment/lammps_fit.hpp): terms counted by hand on a small case, the
+// (advice/lammps_fit.hpp): terms counted by hand on a small case, the
 // choice of bounds scale-free and well formed, the fit recovering known
 // coefficients, a bad coefficients file refused.
 #include <gtest/gtest.h>

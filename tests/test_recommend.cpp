@@ -1,4 +1,4 @@
-// hgrid recommend and the library behind it (experiment/recommend,
+// hgrid recommend and the library behind it (advice/recommend,
 // io/peer_settings): the same radii in every format and unit give the same
 // sizes; nu and d from the file or the options; the K used is named; the
 // LAMMPS lines run in LAMMPS and find every pair.

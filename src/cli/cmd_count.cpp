@@ -18,7 +18,7 @@ namespace hgrid::cli {
 namespace {
 
 /// --balance P1,P2,...: the simulated load balance of the query on P threads
-/// (experiment/balance.hpp), priced by this machine's time model if stored.
+/// (measure/balance.hpp), priced by this machine's time model if stored.
 struct BalanceRun {
   std::vector<Balance> rows;
   std::string cost;

@@ -59,7 +59,7 @@ inline constexpr int kBadInput = 2;
 
 
 /// The --threads option of a command that searches (default 0: all cores,
-/// OMP_NUM_THREADS when set); checked by hgrid::check_threads (grid/threads.hpp).
+/// OMP_NUM_THREADS when set); checked by hgrid::check_threads (base/threads.hpp).
 void add_threads_option(CLI::App* sub, int& threads);
 /// The --frame option of a command that reads a particle file: the snapshot
 /// of a file that holds several (LAMMPS dump, MercuryDPM .data), from the

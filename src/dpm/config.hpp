@@ -33,7 +33,7 @@ struct DpmConfig {
   // Contact detection.
   std::vector<double> sizes;  // HGrid cell sizes
   Search search = Search::top_down;
-  /// Threads of the contact detection (0 = all cores, grid/threads.hpp): the
+  /// Threads of the contact detection (0 = all cores, base/threads.hpp): the
   /// pairs are put in canonical order before the forces are summed, so the
   /// trajectory is the same, bit for bit, for any number.
   int threads = 1;

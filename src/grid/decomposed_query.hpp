@@ -33,7 +33,7 @@ struct CountOnly {};
 /// for every overlapping pair whose lower particle in the reporting order
 /// (radius, owner rank) is owned here, with ids[k] the global index of
 /// spheres[k] (f(t, id_i, id_j) when it takes a thread index;
-/// grid/threads.hpp). With f = CountOnly only the reported pairs are
+/// base/threads.hpp). With f = CountOnly only the reported pairs are
 /// counted and ids may be empty.
 ///
 /// Two own particles: the grid's query (no test on the pair, and with

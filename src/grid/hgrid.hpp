@@ -45,7 +45,7 @@ class HGrid {
 
   /// Hands every overlapping pair (distance < r_i + r_j; minimum image in a
   /// periodic box) to f(i, j) exactly once, with i < j the input indices,
-  /// on `threads` threads (grid/threads.hpp: 0 = all; the callback contract
+  /// on `threads` threads (base/threads.hpp: 0 = all; the callback contract
   /// for more than one is stated there). Search direction and counting are
   /// compile-time policies. The pairs and the counters are the same for any
   /// number of threads; only the order of the calls differs. A const grid
@@ -77,7 +77,7 @@ class HGrid {
   }
 
   /// One piece of a query's work on several threads: the pieces are handed
-  /// out one at a time, in order (grid/threads.hpp). Its counts (scalars
+  /// out one at a time, in order (base/threads.hpp). Its counts (scalars
   /// only: the by-level matrices are left empty), the particles whose
   /// same-level cells it covers, and its level (-1: a part of the Top-Down
   /// cross-level sweep).
@@ -88,7 +88,7 @@ class HGrid {
   };
   /// The counted work of every piece of a query on `threads` threads (run
   /// here one piece after the other): what a simulation of the load balance
-  /// of more threads than a machine has needs (experiment/balance.hpp).
+  /// of more threads than a machine has needs (measure/balance.hpp).
   template <Search S>
   std::vector<Piece> counted_pieces(int threads) const;
 
@@ -390,7 +390,7 @@ class HGrid {
     e.n = n;
   }
 
-  /// A thread's callback f(t, i, j) seen as g(i, j) (grid/threads.hpp).
+  /// A thread's callback f(t, i, j) seen as g(i, j) (base/threads.hpp).
   template <class F>
   struct WithThread {
     F& f;

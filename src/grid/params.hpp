@@ -30,7 +30,7 @@ struct GridParams {
   /// s_L must be at least the largest particle diameter.
   std::vector<double> sizes;
   Search search = Search::top_down;
-  /// Threads of the build and of for_each_pair (grid/threads.hpp): 1 (the
+  /// Threads of the build and of for_each_pair (base/threads.hpp): 1 (the
   /// default: the callback is called from the calling thread only), n > 1,
   /// or 0 for all (OMP_NUM_THREADS, else every core). The pairs and the
   /// counters are the same for any number.

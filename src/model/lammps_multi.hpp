@@ -12,7 +12,7 @@
 // within the pair cutoff (c_i + c_j) / 2, each bin a linked list of particles
 // checked one by one. The terms are expectations for uniformly spread
 // centres; their machine costs are fitted on training packings
-// (experiment/lammps_fit.hpp, bench/lammps_model.cpp).
+// (advice/lammps_fit.hpp, bench/lammps_model.cpp).
 #pragma once
 #include <array>
 #include <span>

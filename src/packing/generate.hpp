@@ -68,7 +68,7 @@ struct PackingSpec {
   int sweeps = kDefaultEquilibrationSweeps;  // equilibrate: Monte Carlo sweeps (n trials each); the cap with stop = stationary
   EquilibrationStop stop = EquilibrationStop::sweeps;  // equilibrate: when it ends
   double stationary_tol = kStationaryRelTol;  // stop = stationary: the test's tolerance, in (0, 0.1]
-  int threads = 0;           // excluded: threads of sequential addition, growth + FIRE and equilibration (grid/threads.hpp);
+  int threads = 0;           // excluded: threads of sequential addition, growth + FIRE and equilibration (base/threads.hpp);
                              // the packing does not depend on it
   bool progress = true;      // progress lines on stderr for long generations
   double checkpoint_seconds = 300;  // equilibrate: least wall time between checkpoints (generate_packing)

@@ -43,7 +43,7 @@ double estimated_work(const PackingSpec& s);
 /// Runs every point of the scene and writes <results_dir>/<name>[-<scale>].h5
 /// and .csv (the default scale has no suffix). Points already measured by an
 /// interrupted run of the same scene and scale (on any number of MPI ranks)
-/// are reused from its journals (experiment/journal.hpp).
+/// are reused from its journals (scenes/journal.hpp).
 std::vector<PointResult> run_scene(const Scene& scene, const RunOptions& opt);
 
 /// The points of `todo` (indices into scene.points) by packing, each group
@@ -61,7 +61,7 @@ struct PointFailure {
 /// scene.points) on opt.jobs threads, a whole group per thread, the groups
 /// of the largest estimated_work first, and each packing generated on the
 /// cores of the jobs that are still running; appending
-/// each finished point to the journal file `journal` (experiment/journal.hpp)
+/// each finished point to the journal file `journal` (scenes/journal.hpp)
 /// and counting them on a progress line named `what`. After a failure no
 /// further point is started; the first failure is returned, not thrown.
 std::optional<PointFailure> measure_groups(const Scene& scene, const std::vector<std::vector<std::size_t>>& groups,

@@ -1,5 +1,5 @@
 // Shared pieces of the packing generators: the random stream; progress lines
-// (packing/progress.hpp) and the unit ball (grid/geometry.hpp).
+// (base/progress.hpp) and the unit ball (grid/geometry.hpp).
 #pragma once
 #include <cstdint>
 #include <random>

@@ -73,7 +73,7 @@ inline constexpr double kDomainMargin = 1e-6;
 /// Runs sweeps until e.sweeps == target or `observe` says stop (e: the
 /// totals so far; zero for a fresh start). A sweep draws only from rng and reads only pos, so a run
 /// resumed from a checkpoint's pos, rng state and e is the uninterrupted
-/// run, bit for bit. `threads` as in grid/threads.hpp (0 = all cores); the
+/// run, bit for bit. `threads` as in base/threads.hpp (0 = all cores); the
 /// result does not depend on it.
 void equilibrate(int d, Boundary b, const std::array<double, 3>& box, const std::vector<double>& radii,
                  std::vector<double>& pos, std::uint64_t target, int threads, GenRng& rng, Progress& progress,

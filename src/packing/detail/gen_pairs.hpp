@@ -22,7 +22,7 @@ inline std::vector<double> doubling_sizes(double rmin, double rmax) {
 }
 
 /// Calls f(i, j) for every pair of spheres closer than r_i + r_j, on
-/// `threads` threads (f as a grid query's callback: grid/threads.hpp).
+/// `threads` threads (f as a grid query's callback: base/threads.hpp).
 /// Bottom-Up: each sphere scans at most 3^d cells per larger level, whatever
 /// the size ratio (Top-Down would scan (2 + 2r/s)^d small cells per big sphere).
 template <int D, Boundary B, class F>
