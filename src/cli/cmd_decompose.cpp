@@ -66,11 +66,8 @@ void run_decomposed_count(const std::string& file, const GridParams& g, double K
   m.K = K;
   m.sizes_requested = g.sizes;
   m.sizes = r.sizes;
-  m.counts = r.work;
+  record_counts(m, r.work, K);
   const double n = static_cast<double>(r.n);
-  m.T_over_N = n > 0 ? r.work.cost(K) / n : 0.0;
-  m.T_cd_over_N = n > 0 ? static_cast<double>(r.work.narrow_phase_checks) / n : 0.0;
-  m.T_ca_over_N = n > 0 ? static_cast<double>(r.work.cell_accesses) / n : 0.0;
   const ModelResult model = evaluate_model(Empirical(r.radii_sample),
                                            ModelParams{r.d, r.packing_fraction, K, g.search}, r.sizes);
   m.model_T_over_N = model.T_over_N;

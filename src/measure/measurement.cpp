@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
+#include <utility>
 
 #include "hgridlab/grid/dispatch.hpp"
 #include "hgridlab/base/error.hpp"
@@ -95,6 +96,14 @@ void add_predicted_seconds(const Packing& p, const MeasureOptions& o, Measuremen
 
 }  // namespace
 
+void record_counts(Measurement& m, Counters c, double K) {
+  m.counts = std::move(c);
+  const double n = static_cast<double>(m.n);
+  m.T_over_N = m.n ? m.counts.cost(K) / n : 0.0;
+  m.T_cd_over_N = m.n ? static_cast<double>(m.counts.narrow_phase_checks) / n : 0.0;
+  m.T_ca_over_N = m.n ? static_cast<double>(m.counts.cell_accesses) / n : 0.0;
+}
+
 Measurement measure(const Packing& p, const GridParams& g, const MeasureOptions& o) {
   if (p.size() == 0) throw InputError("packing", "no particles to measure");
   Measurement m;
@@ -116,7 +125,7 @@ Measurement measure(const Packing& p, const GridParams& g, const MeasureOptions&
     const HGrid<D, B> grid(spheres, p.extent<D>(), g);
     m.seconds_build = since(t0);
     t0 = Clock::now();
-    m.counts = grid.template for_each_pair<Counted>([](std::uint32_t, std::uint32_t) {});
+    record_counts(m, grid.template for_each_pair<Counted>([](std::uint32_t, std::uint32_t) {}), o.K);
     m.seconds_query = since(t0);
     m.sizes = grid.sizes();
     m.build_work = build_work(grid);
@@ -126,10 +135,6 @@ Measurement measure(const Packing& p, const GridParams& g, const MeasureOptions&
     }
     if (o.timing) time_uncounted<D, B>(spheres, p.extent<D>(), g, *o.timing, m);
   });
-  const double n = static_cast<double>(m.n);
-  m.T_over_N = m.counts.cost(o.K) / n;
-  m.T_cd_over_N = static_cast<double>(m.counts.narrow_phase_checks) / n;
-  m.T_ca_over_N = static_cast<double>(m.counts.cell_accesses) / n;
   if (o.model) add_models(p, o, m);
   if (o.time_model) add_predicted_seconds(p, o, m);
   return m;

@@ -81,6 +81,11 @@ struct Measurement {
   double predicted_seconds_build_one_thread_from_counts = NAN, predicted_seconds_query_one_thread_from_counts = NAN;
 };
 
+/// Sets the counts of a search of m.n particles and the work per particle
+/// they give at weight K (T_over_N, T_cd_over_N, T_ca_over_N; 0 for n = 0):
+/// what measure() records, and the decomposed search its gathered counts.
+void record_counts(Measurement& m, Counters c, double K);
+
 /// Builds the grid of `g` on `p`, runs one counted search and what `o` asks.
 /// Throws InputError for an empty packing or sizes the grid refuses.
 Measurement measure(const Packing& p, const GridParams& g, const MeasureOptions& o = {});
