@@ -21,6 +21,7 @@
 #include "hgridlab/grid/version.hpp"
 #include "hgridlab/io/particle_file.hpp"
 #include "hgridlab/packing/packing.hpp"
+#include "hgridlab/packing/packing_sizes.hpp"
 
 namespace py = pybind11;
 using namespace hgrid;
@@ -34,8 +35,12 @@ std::vector<double> to_vector(const DoubleArray& a, const char* field) {
   return std::vector<double>(a.data(), a.data() + a.size());
 }
 
-/// A validated Packing from numpy arrays (positions N x d, radii N, box d).
-Packing make_packing(const DoubleArray& positions, const DoubleArray& radii, const DoubleArray& box, bool periodic) {
+using Tilt = std::optional<std::vector<double>>;
+
+/// A validated Packing from numpy arrays (positions N x d, radii N, box d;
+/// tilt: a tilted periodic box's xy (2D) or xy, xz, yz (3D), LAMMPS's).
+Packing make_packing(const DoubleArray& positions, const DoubleArray& radii, const DoubleArray& box, bool periodic,
+                     const Tilt& tilt = std::nullopt) {
   if (positions.ndim() != 2) throw InputError("positions", "must be an N x d array");
   Packing p;
   p.d = static_cast<int>(positions.shape(1));
@@ -48,6 +53,10 @@ Packing make_packing(const DoubleArray& positions, const DoubleArray& radii, con
   for (int a = 0; a < p.d; ++a) p.box[a] = b[a];
   p.boundary = periodic ? Boundary::periodic : Boundary::walls;
   p.positions.assign(positions.data(), positions.data() + positions.size());
+  if (tilt) {
+    if (tilt->size() != (p.d == 2 ? 1u : 3u)) throw InputError("tilt", p.d == 2 ? "must be [xy] in 2D" : "must be [xy, xz, yz] in 3D");
+    for (std::size_t k = 0; k < tilt->size(); ++k) p.tilt[k] = (*tilt)[k];
+  }
   validate(p);
   return p;
 }
@@ -56,6 +65,7 @@ Packing make_packing(const DoubleArray& positions, const DoubleArray& radii, con
 GridParams grid_params(const Packing& p, const std::optional<std::vector<double>>& sizes, const std::string& search) {
   const Search s = parse_search(search);
   if (sizes) return GridParams{*sizes, s};
+  if (p.tilted()) return GridParams{model_sizes(p, SizeRequest{}, s, choose_K("").K), s};  // the mapped packing's
   return GridParams{recommend_cell_sizes(p.radii, ModelParams{p.d, p.packing_fraction(), choose_K("").K, s}).sizes, s};
 }
 
@@ -77,8 +87,8 @@ py::dict recommend(const DoubleArray& radii, double nu, int d, const std::option
 
 py::array_t<std::uint32_t> pairs(const DoubleArray& positions, const DoubleArray& radii, const DoubleArray& box,
                                  bool periodic, const std::optional<std::vector<double>>& sizes,
-                                 const std::string& search, int threads) {
-  const Packing p = make_packing(positions, radii, box, periodic);
+                                 const std::string& search, int threads, const Tilt& tilt) {
+  const Packing p = make_packing(positions, radii, box, periodic, tilt);
   GridParams params = grid_params(p, sizes, search);
   params.threads = check_threads(threads);
   std::vector<std::vector<std::uint32_t>> per(static_cast<std::size_t>(resolve_threads(params.threads)));
@@ -114,8 +124,8 @@ py::dict to_dict(const Measurement& m) {
 
 py::dict count(const DoubleArray& positions, const DoubleArray& radii, const DoubleArray& box, bool periodic,
                const std::optional<std::vector<double>>& sizes, const std::string& search, double K, int threads,
-               bool model) {
-  const Packing p = make_packing(positions, radii, box, periodic);
+               bool model, const Tilt& tilt) {
+  const Packing p = make_packing(positions, radii, box, periodic, tilt);
   GridParams params = grid_params(p, sizes, search);
   params.threads = check_threads(threads);
   MeasureOptions mo;
@@ -145,6 +155,8 @@ py::dict read_particle_file(const std::string& path, std::optional<std::int64_t>
     out["positions"] = py::none();
   }
   out["box"] = s.box ? py::cast(std::vector<double>(s.box->begin(), s.box->begin() + s.d)) : py::none();
+  const bool tilted = s.tilt[0] != 0 || s.tilt[1] != 0 || s.tilt[2] != 0;
+  out["tilt"] = tilted ? py::cast(std::vector<double>(s.tilt.begin(), s.tilt.begin() + (s.d == 2 ? 1 : 3))) : py::none();
   out["boundary"] = s.mixed_boundary ? py::cast("mixed") : s.boundary ? py::cast(to_string(*s.boundary)) : py::none();
   out["nu"] = s.box && s.d > 0 ? py::cast(s.packing_fraction()) : py::none();
   return out;
@@ -165,12 +177,13 @@ PYBIND11_MODULE(hgridlab, m) {
         "machine's time model, from `hgrid calibrate`) or 'auto' (the time model when K came from a calibration "
         "that has one), as `hgrid recommend --cost`.");
   m.def("pairs", &pairs, py::arg("positions"), py::arg("radii"), py::arg("box"), py::arg("periodic") = true,
-        py::arg("sizes") = py::none(), py::arg("search") = "topdown", py::arg("threads") = 0,
+        py::arg("sizes") = py::none(), py::arg("search") = "topdown", py::arg("threads") = 0, py::arg("tilt") = py::none(),
         "Every overlapping pair (i, j), i < j, as an (M, 2) uint32 array, in no particular order; sizes: cell sizes "
-        "(default: recommended); threads: 0 = all cores (OMP_NUM_THREADS), the same pairs for any number.");
+        "(default: recommended); threads: 0 = all cores (OMP_NUM_THREADS), the same pairs for any number; tilt: a "
+        "tilted periodic box's [xy] (2D) or [xy, xz, yz] (3D), LAMMPS's triclinic box (a Lees-Edwards offset is xy).");
   m.def("count", &count, py::arg("positions"), py::arg("radii"), py::arg("box"), py::arg("periodic") = true,
         py::arg("sizes") = py::none(), py::arg("search") = "topdown", py::arg("K") = kPaperK, py::arg("threads") = 0,
-        py::arg("model") = false,
+        py::arg("model") = false, py::arg("tilt") = py::none(),
         "The counted search (the same counts for any number of threads) as a dict with the fields of "
         "`hgrid count --json` (docs/MEASUREMENT.md): cell_accesses, narrow_phase_checks, contacts, "
         "particles_per_level, accesses_by_level and checks_by_level (L x L, row-major: level of the particle, level "
@@ -182,7 +195,7 @@ PYBIND11_MODULE(hgridlab, m) {
     return out;
   }, "The fields of a measurement (count's dict): (name, unit, meaning) tuples.");
   m.def("read_packing", &read_particle_file, py::arg("path"), py::arg("frame") = py::none(),
-        "A particle file of any supported format: radii, positions (or None), box (or None), boundary (or None), "
-        "d, format, nu (or None).");
+        "A particle file of any supported format: radii, positions (or None), box (or None), tilt (or None), "
+        "boundary (or None), d, format, nu (or None).");
   m.attr("__version__") = HGRIDLAB_VERSION;
 }

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "hgridlab/measure/pairs.hpp"
 #include "hgridlab/base/error.hpp"
 #include "hgridlab/io/lammps_export.hpp"
 #include "hgridlab/io/packing_file.hpp"
@@ -191,6 +192,61 @@ void read_what_lammps_writes(std::uint64_t seed) {
   }
   fs::remove_all(dir);
 }
+
+/// A sheared box, as LAMMPS writes it: the packing read into LAMMPS, its box
+/// made triclinic and sheared by `fix deform` (xy, and in 3D xz and yz, to
+/// a third of the edge they lean along; the atoms remapped with the box),
+/// then a data file and dumps with x y z, scaled xs ys zs (fractional in a
+/// tilted box) and unwrapped xu yu zu. Each reads as the tilted packing:
+/// the tilts LAMMPS ended with, and the pairs LAMMPS's own list counted in
+/// the sheared box, found by the tilted grid and by its brute force alike.
+template <int D>
+void read_what_a_sheared_run_writes(std::uint64_t seed) {
+  const auto lmp = find_lammps();
+  if (!lmp) GTEST_SKIP() << "lmp not on PATH (apt-get install lammps)";
+  const auto sc0 = random_scene<D>(300, 0.4, -3, 4, Boundary::periodic, seed);
+  const Packing p = packing_from(sc0, Boundary::periodic);
+  const fs::path dir = fs::temp_directory_path() / ("hgridlab_lmps_" + std::to_string(::getpid()) + "_" + std::to_string(D));
+  LammpsScript sc;
+  sc.builds = 1;
+  export_lammps(dir.string(), p, sc);
+  const std::array<double, 3> tilt{p.box[0] / 3, D == 3 ? -p.box[0] / 3 : 0.0, D == 3 ? p.box[1] / 3 : 0.0};
+  std::ifstream bin(dir / "in.bin.lmp");
+  std::stringstream script;
+  script.precision(17);
+  script << bin.rdbuf() << "change_box all triclinic\ntimestep 0.001\nfix shear all deform 1 xy final " << tilt[0];
+  if (D == 3) script << " xz final " << tilt[1] << " yz final " << tilt[2];
+  script << " remap x\nrun 20\nunfix shear\nrun 0\nwrite_data sheared.data\n"
+            "write_dump all custom x.dump id x y z radius modify sort id format float %.17g\n"
+            "write_dump all custom s.dump id xs ys zs diameter modify sort id format float %.17g\n"
+            "write_dump all custom u.dump id xu yu zu radius modify sort id format float %.17g\n";
+  std::ofstream(dir / "in.shear.lmp") << script.str();
+  const LammpsResult r = run_lammps(*lmp, dir.string(), "in.shear.lmp");
+  ASSERT_TRUE(r.ok) << r.error;
+  ASSERT_GT(r.pairs, 0u);
+  for (const char* f : {"sheared.data", "x.dump", "s.dump", "u.dump"}) {
+    SCOPED_TRACE(std::string(f) + " seed " + std::to_string(seed));
+    const Packing q = read_packing((dir / f).string());
+    ASSERT_EQ(q.d, D);
+    ASSERT_EQ(q.size(), p.size());
+    ASSERT_TRUE(q.tilted());
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(q.tilt[k], tilt[k], 1e-9 * p.box[0]) << "tilt " << k;
+    for (int a = 0; a < D; ++a) EXPECT_NEAR(q.box[a], p.box[a], 1e-9 * p.box[a]);
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> grid, brute;
+    const auto [rmin, rmax] = std::minmax_element(q.radii.begin(), q.radii.end());
+    for_each_packing_pair(q, GridParams{exponential_sizes(2, *rmin, *rmax)},
+                          [&](int, std::uint32_t i, std::uint32_t j) { grid.emplace_back(i, j); });
+    for_each_packing_pair_brute(q, [&](int, std::uint32_t i, std::uint32_t j) { brute.emplace_back(i, j); });
+    std::sort(grid.begin(), grid.end());
+    std::sort(brute.begin(), brute.end());
+    EXPECT_EQ(grid, brute);
+    EXPECT_EQ(grid.size(), r.pairs);
+  }
+  fs::remove_all(dir);
+}
+
+TEST(LammpsRun, ShearedBoxLammpsWritesIsRead3D) { read_what_a_sheared_run_writes<3>(23); }
+TEST(LammpsRun, ShearedBoxLammpsWritesIsRead2D) { read_what_a_sheared_run_writes<2>(24); }
 
 TEST(LammpsRun, FilesLammpsWritesAreRead3D) { read_what_lammps_writes<3>(21); }
 TEST(LammpsRun, FilesLammpsWritesAreRead2D) { read_what_lammps_writes<2>(22); }

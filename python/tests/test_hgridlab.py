@@ -177,3 +177,31 @@ def test_read_packing_takes_the_last_snapshot_or_the_frame_asked(tmp_path):
     assert list(first["radii"]) == [0.5] and first["box"] == [10.0, 10.0]
     with pytest.raises(ValueError, match="frame"):
         hgridlab.read_packing(str(path), frame=2)
+
+
+@pytest.mark.parametrize("d", [2, 3])
+def test_pairs_in_a_tilted_box_equal_brute_force(d):
+    """A tilted (triclinic) periodic box, LAMMPS's: centres at uniform
+    fractional coordinates, pairs against numpy's minimum image of the lattice."""
+    positions, radii, box = scene(n=400, nu=0.2, d=d, seed=SEED + d)
+    tilt = [0.4 * box[0]] if d == 2 else [0.4 * box[0], -0.3 * box[0], 0.25 * box[1]]
+    H = np.diag(box)
+    H[0, 1] = tilt[0]
+    if d == 3:
+        H[0, 2], H[1, 2] = tilt[1], tilt[2]
+    frac = np.random.default_rng(SEED).random((len(radii), d))
+    positions = frac @ H.T
+    diff = positions[:, None, :] - positions[None, :, :]
+    s = diff @ np.linalg.inv(H).T
+    diff = (s - np.round(s)) @ H.T
+    dist2 = np.sum(diff**2, axis=-1)
+    reach = (radii[:, None] + radii[None, :]) ** 2
+    i, j = np.nonzero(np.triu(dist2 < reach, k=1))
+    want = sorted(zip(i.tolist(), j.tolist()))
+    got = hgridlab.pairs(positions, radii, box, tilt=tilt)
+    assert sorted(map(tuple, got.tolist())) == want
+    assert len(want) > 0
+    c = hgridlab.count(positions, radii, box, tilt=tilt)
+    assert c["contacts"] == len(want)
+    assert c["tilt"] == pytest.approx(tilt)
+    assert c["tilt_inflation"] > 1.0

@@ -65,6 +65,8 @@ std::string lammps_data(const Packing& p) {
     else if (walls) hi = p.box[a] * (1 + 1e-9);        // centres may sit on the top wall
     out += format_number(lo) + " " + format_number(hi) + " " + ax[a] + "lo " + ax[a] + "hi\n";
   }
+  if (p.tilted())  // a triclinic box (grid/tilted_box.hpp: LAMMPS's own convention)
+    out += format_number(p.tilt[0]) + " " + format_number(p.tilt[1]) + " " + format_number(p.tilt[2]) + " xy xz yz\n";
   out += "\nAtoms # sphere\n\n";
   std::string line;
   for (std::size_t i = 0; i < p.size(); ++i) {

@@ -92,6 +92,13 @@ Packing read_h5_rows(const std::string& path, std::uint64_t part, std::uint64_t 
     throw InputError("box", "attribute must have d = " + std::to_string(p.d) + " values in " + path);
   for (int a = 0; a < p.d; ++a) p.box[a] = box[a];
   p.boundary = parse_boundary(h5_read_string_attr(root.id, "boundary", path));
+  if (h5_has_attr(root.id, "tilt")) {  // a tilted box: xy (2D), xy xz yz (3D)
+    const auto t = h5_read_double_attr(root.id, "tilt", path);
+    if (t.size() != (p.d == 2 ? 1u : 3u))
+      throw InputError("tilt", "attribute must have " + std::string(p.d == 2 ? "1 value (xy)" : "3 values (xy xz yz)") +
+                                   " in " + path);
+    for (std::size_t k = 0; k < t.size(); ++k) p.tilt[k] = t[k];
+  }
   const hsize_t n = declared_rows(f.id, "/positions", p.d, path, parts);
   if (declared_rows(f.id, "/radii", 1, path, parts) != n)
     throw InputError("radii", "dataset must have N = " + std::to_string(n) + " values in " + path);
@@ -149,7 +156,8 @@ struct Reader {
 std::string encode(const Packing& p) {
   std::string out = "P";
   const std::uint64_t d = p.d, b = p.boundary == Boundary::walls, n = p.size();
-  put(out, &d, 8), put(out, &b, 8), put(out, p.box.data(), 3 * sizeof(double)), put(out, &n, 8);
+  put(out, &d, 8), put(out, &b, 8), put(out, p.box.data(), 3 * sizeof(double));
+  put(out, p.tilt.data(), 3 * sizeof(double)), put(out, &n, 8);
   put(out, p.positions.data(), p.positions.size() * sizeof(double));
   put(out, p.radii.data(), p.radii.size() * sizeof(double));
   const std::uint64_t ns = p.str_attrs.size(), nn = p.num_attrs.size();
@@ -166,6 +174,7 @@ Packing decode(const std::string& in) {
   p.d = static_cast<int>(r.u64());
   p.boundary = r.u64() ? Boundary::walls : Boundary::periodic;
   r.get(p.box.data(), 3 * sizeof(double));
+  r.get(p.tilt.data(), 3 * sizeof(double));
   const std::uint64_t n = r.u64();
   if (n > kMaxParticles || (p.d != 2 && p.d != 3)) throw std::runtime_error("isolated HDF5 read: bad message");
   p.positions.resize(n * p.d);
@@ -303,6 +312,8 @@ void write_packing(const std::string& path, const Packing& p) {
     detail::h5_write_attr(root.id, "d", std::int64_t{p.d});
     detail::h5_write_attr(root.id, "box", std::vector<double>(p.box.begin(), p.box.begin() + p.d));
     detail::h5_write_attr(root.id, "boundary", std::string(to_string(p.boundary)));
+    if (p.tilted())
+      detail::h5_write_attr(root.id, "tilt", std::vector<double>(p.tilt.begin(), p.tilt.begin() + (p.d == 2 ? 1 : 3)));
     for (const auto& [k, v] : p.num_attrs) detail::h5_write_attr(root.id, k, std::vector<double>{v});
     for (const auto& [k, v] : p.str_attrs) detail::h5_write_attr(root.id, k, v);
     for (const auto& [k, v] : provenance_fields())

@@ -38,6 +38,7 @@ ParticleSet from_packing(Packing p) {
   s.radii = std::move(p.radii);
   s.positions = std::move(p.positions);
   s.box = p.box;
+  s.tilt = p.tilt;
   s.boundary = p.boundary;
   return s;
 }
@@ -103,6 +104,7 @@ Packing to_packing(ParticleSet s, const std::string& name) {
   Packing p;
   p.d = s.d;
   p.box = *s.box;
+  p.tilt = s.tilt;
   p.boundary = s.boundary.value_or(Boundary::periodic);
   if (!s.boundary) p.str_attrs[kBoundarySourceAttr] = kBoundaryAssumed;
   p.positions = std::move(s.positions);
@@ -113,8 +115,13 @@ Packing to_packing(ParticleSet s, const std::string& name) {
 
 std::string boundary_description(const Packing& p) {
   const auto it = p.str_attrs.find(kBoundarySourceAttr);
-  if (it != p.str_attrs.end() && it->second == kBoundaryAssumed) return "periodic (not in the file: assumed)";
-  return to_string(p.boundary);
+  std::string out = it != p.str_attrs.end() && it->second == kBoundaryAssumed ? "periodic (not in the file: assumed)"
+                                                                                : to_string(p.boundary);
+  if (p.tilted())
+    out += p.d == 2 ? ", tilted box xy = " + format_number(p.tilt[0])
+                    : ", tilted box xy xz yz = " + format_number(p.tilt[0]) + " " + format_number(p.tilt[1]) + " " +
+                          format_number(p.tilt[2]);
+  return out;
 }
 
 std::string boundary_description(const ParticleSet& s) {

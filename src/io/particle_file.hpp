@@ -31,6 +31,7 @@ struct ParticleSet {
   std::vector<double> radii;          // > 0 and finite, in the file's length unit
   std::vector<double> positions;      // N x d (origin moved to the box's lower corner), or empty
   std::optional<std::array<double, 3>> box;  // side lengths (first d used), when the file has a box
+  std::array<double, 3> tilt{};       // a tilted (triclinic) box's xy xz yz (LAMMPS; grid/tilted_box.hpp), else 0
   std::optional<Boundary> boundary;   // when the file says (`# boundary`, dump flags, HDF5)
   bool mixed_boundary = false;        // a LAMMPS dump with periodic and non-periodic axes
   std::size_t frame = 0, frames = 1;  // the snapshot read, of how many the file holds (dumps, MercuryDPM .data)

@@ -29,7 +29,9 @@ std::string extended_xyz(const Packing& p, const GridPlacement& g) {
   for (int a = 0; a < 3; ++a)
     for (int b = 0; b < 3; ++b) {
       if (a + b > 0) out += ' ';
-      out += shortest_number(a != b ? 0.0 : a < p.d ? p.box[a] : 1.0);
+      // Lattice vector a, component b: a = (lx, 0, 0), b = (xy, ly, 0), c = (xz, yz, lz).
+      const double tilt = a == 1 && b == 0 ? p.tilt[0] : a == 2 && b == 0 ? p.tilt[1] : a == 2 && b == 1 ? p.tilt[2] : 0.0;
+      out += shortest_number(a != b ? tilt : a < p.d ? p.box[a] : 1.0);
     }
   out += "\" Origin=\"0 0 0\" pbc=\"" + std::string(pbc) + " " + pbc + " " + (p.d == 3 ? pbc : "F") +
          "\" Properties=species:S:1:pos:R:3:radius:R:1:level:I:1:cell:I:1\n";

@@ -27,6 +27,10 @@ const MeasurementField kFields[] = {
   {"boundary_source", "", "file, or 'assumed: not in the file' (periodic)",
    [](const M& m) { return FieldValue(std::string(m.boundary_assumed ? "assumed: not in the file" : "file")); }},
   {"nu_achieved", "1", "packing fraction of the particles in their box", [](const M& m) { return num(m.nu_achieved); }},
+  {"tilt", "length", "a tilted (triclinic) periodic box's tilts: xy (2D), xy xz yz (3D); null: orthogonal",
+   [](const M& m) { return list(m.tilt); }},
+  {"tilt_inflation", "1", "c: a tilted box's grid searches spheres and cells c times larger in the mapped box (docs/MODEL.md section 12)",
+   [](const M& m) { return num(m.tilt_inflation); }},
   {"search", "", "cross-level search: topdown or bottomup", [](const M& m) { return FieldValue(std::string(to_string(m.search))); }},
   {"threads", "1", "threads the counted search ran on (the counts do not depend on it)",
    [](const M& m) { return FieldValue(std::int64_t{m.threads}); }},
@@ -48,6 +52,7 @@ const MeasurementField kFields[] = {
   {"model_T_cd_over_N", "1", "its checks / n", [](const M& m) { return num(m.model_T_cd_over_N); }},
   {"model_T_ca_over_N", "1", "its cell accesses / n", [](const M& m) { return num(m.model_T_ca_over_N); }},
   {"model_checks_by_level", "1", "its expected checks, L x L like checks_by_level", [](const M& m) { return list(m.model_checks_by_level); }},
+  {"model_skipped", "", "why the random-centres model was not computed (when asked)", [](const M& m) { return text(m.model_skipped); }},
   {"model_excluded_T_over_N", "1", "the excluded-volume model (hard spheres; docs/MODEL.md section 8)",
    [](const M& m) { return num(m.model_excluded_T_over_N); }},
   {"model_excluded_T_cd_over_N", "1", "its checks / n", [](const M& m) { return num(m.model_excluded_T_cd_over_N); }},
@@ -120,10 +125,21 @@ void append(std::string& out, const char* fmt, ...) {
 }  // namespace
 
 std::string measurement_text(const Measurement& m) {
+  const auto g6 = [](double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.6g", v);
+    return std::string(b);
+  };
   std::string s;
   append(s, "n = %llu, d = %d, %s%s, nu = %.6g, search %s, K = %g\n", (unsigned long long)m.n, m.d,
          to_string(m.boundary), m.boundary_assumed ? " (not in the file: assumed)" : "", m.nu_achieved,
          to_string(m.search), m.K);
+  if (!m.tilt.empty())
+    append(s, "tilted box: %s = %s, grid on the mapped spheres (radii and cell sizes x c = %.6g)\n",
+           m.tilt.size() == 1 ? "xy" : "xy xz yz",
+           m.tilt.size() == 1 ? std::to_string(m.tilt[0]).c_str()
+                              : (std::to_string(m.tilt[0]) + " " + std::to_string(m.tilt[1]) + " " + std::to_string(m.tilt[2])).c_str(),
+           m.tilt_inflation);
   const bool ex = !m.model_excluded_checks_by_level.empty();
   const auto L = static_cast<std::size_t>(m.counts.levels);
   const auto row_sum = [L](const auto& v, std::size_t h) {
@@ -135,9 +151,10 @@ std::string measurement_text(const Measurement& m) {
   append(s, "%5s %14s %12s %16s %20s %14s %16s\n", "level", "size", "particles", "cell_accesses",
          "narrow_phase_checks", "model_checks", "excluded_checks");
   for (std::size_t h = 0; h < L; ++h)
-    append(s, "%5zu %14.6g %12llu %16.0f %20.0f %14.6g %16s\n", h + 1, m.sizes[h],
+    append(s, "%5zu %14.6g %12llu %16.0f %20.0f %14s %16s\n", h + 1, m.sizes[h],
            (unsigned long long)m.counts.particles_per_level[h], row_sum(m.counts.accesses_by_level, h),
-           row_sum(m.counts.checks_by_level, h), row_sum(m.model_checks_by_level, h),
+           row_sum(m.counts.checks_by_level, h),
+           m.model_checks_by_level.empty() ? "-" : g6(row_sum(m.model_checks_by_level, h)).c_str(),
            ex ? std::to_string(row_sum(m.model_excluded_checks_by_level, h)).c_str() : "-");
   append(s, "total: %llu cell accesses, %llu narrow-phase checks, %llu contacts, T/N = %.6g\n",
          (unsigned long long)m.counts.cell_accesses, (unsigned long long)m.counts.narrow_phase_checks,
@@ -149,6 +166,7 @@ std::string measurement_text(const Measurement& m) {
     else
       append(s, "; excluded-volume model: %s\n", m.model_excluded_skipped.empty() ? "not asked" : m.model_excluded_skipped.c_str());
   }
+  if (!m.model_skipped.empty()) append(s, "model: not computed: %s\n", m.model_skipped.c_str());
   if (m.repeats > 0)
     append(s, "wall time, fastest of %d uncounted runs on %d threads: query %.6g s, build %.6g s\n", m.repeats,
            m.threads, m.seconds_query_best, m.seconds_build_best);

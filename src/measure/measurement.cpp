@@ -8,6 +8,7 @@
 #include "hgridlab/grid/dispatch.hpp"
 #include "hgridlab/base/error.hpp"
 #include "hgridlab/grid/hgrid.hpp"
+#include "hgridlab/grid/tilted.hpp"
 #include "hgridlab/io/particle_file.hpp"
 #include "hgridlab/model/cell_sizes.hpp"
 #include "hgridlab/model/distribution.hpp"
@@ -17,13 +18,18 @@ namespace hgrid {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+/// The orthogonal grid that holds the cells (a tilted box's is its mapped one).
+template <int D, Boundary B>
+const HGrid<D, B>& mapped_grid(const HGrid<D, B>& g) { return g; }
+template <int D>
+const HGrid<D, Boundary::periodic>& mapped_grid(const TiltedHGrid<D>& g) { return g.mapped_grid(); }
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-/// Repeats build + uncounted query (each timed on its own) and keeps the
-/// fastest; every run must find the counted search's pairs.
-template <int D, Boundary B>
-void time_uncounted(const std::vector<Sphere<D>>& spheres, const Extent<D>& box, const GridParams& g,
-                    const TimingOptions& opt, Measurement& m) {
+/// Repeats build (make()) + uncounted query (each timed on its own) and
+/// keeps the fastest; every run must find the counted search's pairs.
+template <class MakeGrid>
+void time_uncounted(MakeGrid make, const GridParams& g, const TimingOptions& opt, Measurement& m) {
   if (opt.min_repeats < 1 || opt.max_repeats < opt.min_repeats)
     throw InputError("repeat", "need 1 <= min_repeats <= max_repeats");
   struct alignas(64) Slot {  // pairs found per thread (one cache line each)
@@ -35,7 +41,7 @@ void time_uncounted(const std::vector<Sphere<D>>& spheres, const Extent<D>& box,
   while (static_cast<int>(queries.size()) < opt.max_repeats &&
          (static_cast<int>(queries.size()) < opt.min_repeats || total < opt.min_seconds)) {
     auto t0 = Clock::now();
-    const HGrid<D, B> grid(spheres, box, g);
+    const auto grid = make();
     best_build = std::min(best_build, since(t0));
     for (auto& f : found) f.n = 0;
     t0 = Clock::now();
@@ -54,7 +60,37 @@ void time_uncounted(const std::vector<Sphere<D>>& spheres, const Extent<D>& box,
   m.seconds_build_best = best_build;
 }
 
+/// A tilted box's grid searches the mapped packing (grid/tilted.hpp): its
+/// spheres c times larger in the orthogonal box of the same lengths, with
+/// cell sizes c times larger; the random-centres model of that packing is
+/// the model of the work (docs/MODEL.md section 12). The excluded-volume
+/// model describes spheres, not the mapped ellipsoids: not computed.
+void add_tilted_model(const Packing& p, const MeasureOptions& o, Measurement& m) {
+  Packing mapped;
+  mapped.d = p.d;
+  mapped.box = p.box;
+  mapped.boundary = Boundary::periodic;
+  mapped.radii = p.radii;
+  for (auto& r : mapped.radii) r *= m.tilt_inflation;
+  mapped.positions.assign(p.positions.size(), 0.0);  // the random-centres model reads radii, box and sizes only
+  std::vector<double> sizes = sizes_for_grid(m.sizes, 2 * Empirical(p.radii).r_max());
+  for (auto& s : sizes) s *= m.tilt_inflation;
+  if (o.excluded_model) m.model_excluded_skipped = "a tilted box (the model is for spheres in the grid; see docs/MODEL.md section 12)";
+  try {
+    const PackingModels pm = model_for_packing(mapped, sizes, m.search, o.K, false, false, o.wall_pairs);
+    m.model_T_over_N = pm.random.T_over_N;
+    m.model_T_cd_over_N = pm.random.T_cd_over_N;
+    m.model_T_ca_over_N = pm.random.T_ca_over_N;
+    for (const double v : pm.random.T_cd_pair) m.model_checks_by_level.push_back(static_cast<double>(m.n) * v);
+  } catch (const InputError& e) {
+    // c^d nu > 1: the mapped spheres fill more than the box; the model's
+    // domain (nu <= 1) does not reach it.
+    m.model_skipped = std::string("the tilted box's mapped spheres (grid/tilted.hpp): ") + e.what();
+  }
+}
+
 void add_models(const Packing& p, const MeasureOptions& o, Measurement& m) {
+  if (p.tilted()) return add_tilted_model(p, o, m);
   const Empirical dist(p.radii);
   const std::vector<double> sizes = sizes_for_grid(m.sizes, 2 * dist.r_max());
   const PackingModels pm =
@@ -117,23 +153,35 @@ Measurement measure(const Packing& p, const GridParams& g, const MeasureOptions&
   m.threads = resolve_threads(g.threads);
   m.K = o.K;
   m.sizes_requested = g.sizes;
-  dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
-    constexpr int D = decltype(dim)::value;
-    constexpr Boundary B = decltype(bnd)::value;
-    const auto spheres = p.spheres<D>();
+  // The counted search, the sizes as used, the occupancy, the timings: on
+  // the grid make() builds (the HGrid, or a tilted box's, grid/tilted.hpp).
+  const auto on_grid = [&](auto make) {
     auto t0 = Clock::now();
-    const HGrid<D, B> grid(spheres, p.extent<D>(), g);
+    const auto grid = make();
     m.seconds_build = since(t0);
     t0 = Clock::now();
     record_counts(m, grid.template for_each_pair<Counted>([](std::uint32_t, std::uint32_t) {}), o.K);
     m.seconds_query = since(t0);
     m.sizes = grid.sizes();
-    m.build_work = build_work(grid);
+    const auto& orthogonal = mapped_grid(grid);
+    m.build_work = build_work(orthogonal);
     if (o.occupancy) {
-      const auto occ = grid.occupancy(0);
+      const auto occ = orthogonal.occupancy(0);
       m.share_multi_lowest = static_cast<double>(occ[2]) / static_cast<double>(occ[0] + occ[1] + occ[2]);
     }
-    if (o.timing) time_uncounted<D, B>(spheres, p.extent<D>(), g, *o.timing, m);
+    if (o.timing) time_uncounted(make, g, *o.timing, m);
+  };
+  dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
+    constexpr int D = decltype(dim)::value;
+    constexpr Boundary B = decltype(bnd)::value;
+    const auto spheres = p.spheres<D>();
+    if (p.tilted()) {
+      m.tilt.assign(p.tilt.begin(), p.tilt.begin() + (D == 2 ? 1 : 3));
+      m.tilt_inflation = p.tilted_box<D>().inflation();
+      on_grid([&] { return TiltedHGrid<D>(spheres, p.tilted_box<D>(), g); });
+    } else {
+      on_grid([&] { return HGrid<D, B>(spheres, p.extent<D>(), g); });
+    }
   });
   if (o.model) add_models(p, o, m);
   if (o.time_model) add_predicted_seconds(p, o, m);

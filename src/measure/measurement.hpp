@@ -52,6 +52,8 @@ struct Measurement {
   Boundary boundary = Boundary::periodic;
   bool boundary_assumed = false;  // the file had no boundary: periodic assumed
   double nu_achieved = 0;         // packing fraction of the particles in their box
+  std::vector<double> tilt;       // a tilted box's xy (2D), xy xz yz (3D); empty: orthogonal
+  double tilt_inflation = NAN;    // a tilted box's c (grid/tilted.hpp)
   // The grid.
   Search search = Search::top_down;
   int threads = 1;                     // threads the counted search ran on
@@ -64,6 +66,7 @@ struct Measurement {
   // The paper's model for the same radii, packing fraction and sizes.
   double model_T_over_N = NAN, model_T_cd_over_N = NAN, model_T_ca_over_N = NAN;
   std::vector<double> model_checks_by_level;  // L x L expected checks (counts, like checks_by_level)
+  std::string model_skipped;                  // why it was not computed ("" when it was or was not asked)
   // The excluded-volume model, where it applies.
   double model_excluded_T_over_N = NAN, model_excluded_T_cd_over_N = NAN, model_excluded_T_ca_over_N = NAN;
   std::vector<double> model_excluded_checks_by_level;

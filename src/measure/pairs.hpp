@@ -1,5 +1,5 @@
 // Every overlapping pair of a packing, found by its grid or by brute force,
-// for any dimension and boundary: what `hgrid pairs` and Python's `pairs`
+// for any dimension and boundary (a tilted box too): what `hgrid pairs` and Python's `pairs`
 // print or return.
 #pragma once
 #include <cstdint>
@@ -8,6 +8,7 @@
 #include "hgridlab/grid/brute_force.hpp"
 #include "hgridlab/grid/dispatch.hpp"
 #include "hgridlab/grid/hgrid.hpp"
+#include "hgridlab/grid/tilted.hpp"
 #include "hgridlab/packing/packing.hpp"
 
 namespace hgrid {
@@ -19,8 +20,13 @@ void for_each_packing_pair(const Packing& p, const GridParams& g, F&& f) {
   dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
     constexpr int D = decltype(dim)::value;
     const auto spheres = p.spheres<D>();
-    const HGrid<D, decltype(bnd)::value> grid(spheres, p.extent<D>(), g);
-    grid.for_each_pair(f);
+    if (p.tilted()) {
+      const TiltedHGrid<D> grid(spheres, p.tilted_box<D>(), g);
+      grid.for_each_pair(f);
+    } else {
+      const HGrid<D, decltype(bnd)::value> grid(spheres, p.extent<D>(), g);
+      grid.for_each_pair(f);
+    }
   });
 }
 
@@ -30,8 +36,9 @@ void for_each_packing_pair_brute(const Packing& p, F&& f) {
   dispatch(p.d, p.boundary, [&](auto dim, auto bnd) {
     constexpr int D = decltype(dim)::value;
     const auto spheres = p.spheres<D>();
-    brute_force_pairs<D, decltype(bnd)::value>(std::span<const Sphere<D>>(spheres), p.extent<D>(),
-                                                [&](std::uint32_t i, std::uint32_t j) { f(0, i, j); });
+    const auto g = [&](std::uint32_t i, std::uint32_t j) { f(0, i, j); };
+    if (p.tilted()) brute_force_pairs_tilted<D>(std::span<const Sphere<D>>(spheres), p.tilted_box<D>(), g);
+    else brute_force_pairs<D, decltype(bnd)::value>(std::span<const Sphere<D>>(spheres), p.extent<D>(), g);
   });
 }
 

@@ -280,6 +280,9 @@ DecomposedRun decomposed_search(const std::string& file, const GridParams& g, bo
   collective([&] {
     part = read_packing_part(file, static_cast<std::uint64_t>(rank()), static_cast<std::uint64_t>(size()), first,
                              total);
+    if (part.tilted())  // its bricks and ghosts are cut along the axes
+      throw InputError("box", "the decomposed search cuts orthogonal boxes; " + file +
+                                  " has a tilted box (count it without --decompose)");
   });
   const double seconds_read = since(t0);
   DecomposedRun out;

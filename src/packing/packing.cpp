@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <fstream>
 #include <string>
+#include <tuple>
 
 #include "hgridlab/base/error.hpp"
 
@@ -26,6 +27,10 @@ void validate(Packing& p, std::uint64_t first_index) {
   for (int a = 0; a < p.d; ++a)
     if (!(std::isfinite(p.box[a]) && p.box[a] > 0))
       throw InputError("box", "side " + std::to_string(a + 1) + " must be finite and > 0");
+  if (p.tilted()) {
+    if (p.boundary != Boundary::periodic) throw InputError("box", "a tilted box must be periodic");
+    p.d == 2 ? p.tilted_box<2>().check(0) : p.tilted_box<3>().check(0);  // finite tilts, xz = yz = 0 in 2D
+  }
   if (p.positions.size() != p.radii.size() * static_cast<std::size_t>(p.d))
     throw InputError("positions", "expected " + std::to_string(p.radii.size()) + " x " + std::to_string(p.d) +
                                       " values, got " + std::to_string(p.positions.size()));
@@ -40,13 +45,30 @@ void validate(Packing& p, std::uint64_t first_index) {
       double& x = p.positions[i * p.d + a];
       if (!std::isfinite(x))
         throw InputError("position", "particle " + std::to_string(i + first_index) + " has a non-finite coordinate");
-      if (p.boundary == Boundary::periodic) {
+      if (p.tilted()) {
+        continue;  // wrapped below, in fractional coordinates
+      } else if (p.boundary == Boundary::periodic) {
         x = detail::wrap(x, p.box[a]);
       } else if (x < 0 || x > p.box[a]) {
         throw InputError("position", "particle " + std::to_string(i + first_index) + " has its centre outside the walled box [0, " +
                                          std::to_string(p.box[a]) + "] on axis " + std::to_string(a + 1));
       }
     }
+  }
+  if (p.tilted()) {
+    const auto into_cell = [&](auto box) {
+      constexpr int D = std::tuple_size_v<decltype(box.length)>;
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        std::array<double, D> x{};
+        for (int a = 0; a < D; ++a) x[a] = p.positions[i * D + a];
+        std::array<double, D> s = box.fractional(x);
+        for (auto& v : s) v = detail::wrap(v, 1.0);
+        x = box.cartesian(s);
+        for (int a = 0; a < D; ++a) p.positions[i * D + a] = x[a];
+      }
+    };
+    if (p.d == 2) into_cell(p.tilted_box<2>());
+    else into_cell(p.tilted_box<3>());
   }
   if (!std::isfinite(p.packing_fraction()))
     throw InputError("radius", "the particles' volume over the box's is not a finite number (radii too large)");

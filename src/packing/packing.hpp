@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "hgridlab/grid/geometry.hpp"
+#include "hgridlab/grid/tilted_box.hpp"
 
 namespace hgrid {
 
@@ -15,6 +16,9 @@ struct Packing {
   int d = 3;
   std::array<double, 3> box{};  // first d entries used
   Boundary boundary = Boundary::periodic;
+  /// Tilts xy, xz, yz of a tilted (triclinic) periodic box, LAMMPS's
+  /// (grid/tilted_box.hpp; 2D: xy only): all 0 for an orthogonal box.
+  std::array<double, 3> tilt{};
   std::vector<double> positions;
   std::vector<double> radii;
   /// Extra root attributes carried with the file (generation parameters, seed...).
@@ -34,6 +38,11 @@ struct Packing {
     }
     return out;
   }
+  bool tilted() const { return tilt[0] != 0 || tilt[1] != 0 || tilt[2] != 0; }
+  template <int D>
+  TiltedBox<D> tilted_box() const {
+    return TiltedBox<D>{extent<D>(), tilt};
+  }
   template <int D>
   Extent<D> extent() const {
     Extent<D> e{};
@@ -42,8 +51,9 @@ struct Packing {
   }
 };
 
-/// Checks a packing (d, box, radii > 0, finite values, centres inside a walled
-/// box) and wraps periodic centres into [0, A). Throws InputError naming the
+/// Checks a packing (d, box, tilts, radii > 0, finite values, centres inside
+/// a walled box) and wraps periodic centres into [0, A) (a tilted box: into
+/// the box's cell, fractional coordinates in [0, 1)). Throws InputError naming the
 /// field; particle k is named as k + first_index (a part of a larger file).
 void validate(Packing& p, std::uint64_t first_index = 0);
 

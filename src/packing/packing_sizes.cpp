@@ -12,8 +12,33 @@
 
 namespace hgrid {
 
+namespace {
+
+/// A tilted box's grid searches the mapped packing: radii and sizes c times
+/// larger in a box of the same volume (grid/tilted.hpp). Its sizes are the
+/// mapped packing's, over c; where c^d nu > 1 lies beyond the model's
+/// packing fractions, the sizes of the packing as it is.
+std::vector<double> tilted_model_sizes(const Packing& p, const SizeRequest& r, Search search, double K) {
+  if (r.excluded_model) throw InputError("excluded-sizes", "a tilted box's grid searches mapped ellipsoids, not hard spheres");
+  const double c = p.d == 2 ? p.tilted_box<2>().inflation() : p.tilted_box<3>().inflation();
+  Packing m = p;
+  m.tilt = {};
+  for (auto& v : m.radii) v *= c;
+  if (!(m.packing_fraction() <= 1.0)) {
+    m = p;
+    m.tilt = {};
+    return model_sizes(m, r, search, K);
+  }
+  std::vector<double> sizes = model_sizes(m, r, search, K);
+  for (auto& v : sizes) v /= c;
+  return sizes;
+}
+
+}  // namespace
+
 std::vector<double> model_sizes(const Packing& p, const SizeRequest& r, Search search, double K) {
   if (p.size() == 0) throw InputError("cells", "the packing has no particles to fit sizes to");
+  if (p.tilted()) return tilted_model_sizes(p, r, search, K);
   const Empirical dist(p.radii);
   const ModelParams mp{p.d, p.packing_fraction(), K, search};
   if (r.time_model) {

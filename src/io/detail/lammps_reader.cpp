@@ -43,6 +43,8 @@ void finish(ParticleSet& s, const std::array<double, 3>& lo, const std::array<do
   for (std::size_t i = 0; i < n; ++i)
     for (int a = 0; a < 3; ++a) s.positions[3 * i + a] -= lo[a];
   if (!flat) return;
+  if (s.tilt[1] != 0 || s.tilt[2] != 0)
+    throw InputError("box", name + " is 2D (every z equal) but its box tilts z (xz, yz not 0)");
   std::vector<double> xy;
   xy.reserve(2 * n);
   for (std::size_t i = 0; i < n; ++i) xy.push_back(s.positions[3 * i]), xy.push_back(s.positions[3 * i + 1]);
@@ -138,11 +140,7 @@ ParticleSet parse_lammps_data(std::string_view text, const std::string& name) {
     } else if (toks.size() == 6 && toks[3] == "xy" && toks[4] == "xz" && toks[5] == "yz") {
       // LAMMPS writes the tilts of any triclinic box, zero ones too (a shear
       // run starts from one): a box without tilt is orthogonal.
-      for (int k = 0; k < 3; ++k)
-        if (finite_number(toks[k], "box", at) != 0)
-          throw InputError("box", "a tilted (triclinic) box, " + std::string(toks[3 + k]) + " = " +
-                                      std::string(toks[k]) + " at " + at.where() +
-                                      ": hgridlab reads orthogonal boxes (all tilts 0)");
+      for (int k = 0; k < 3; ++k) s.tilt[k] = finite_number(toks[k], "box", at);
     }
   }
   throw InputError("Atoms", "no 'Atoms' section in " + name);
@@ -202,10 +200,18 @@ ParticleSet parse_lammps_dump(std::string_view text, const std::string& name, st
           throw InputError("BOX BOUNDS", std::string("expected '") + (tilted ? "lo hi tilt" : "lo hi") + "' at " + at.where());
         (*lo)[a] = finite_number(b[0], "BOX BOUNDS", at);
         (*hi)[a] = finite_number(b[1], "BOX BOUNDS", at);
-        if (tilted && finite_number(b[2], "BOX BOUNDS", at) != 0)
-          throw InputError("BOX BOUNDS", "a tilted (triclinic) box, " + std::string(a == 0 ? "xy" : a == 1 ? "xz" : "yz") +
-                                             " = " + std::string(b[2]) + " at " + at.where() +
-                                             ": hgridlab reads orthogonal boxes (all tilts 0)");
+        s.tilt[a] = tilted ? finite_number(b[2], "BOX BOUNDS", at) : 0.0;  // xy, xz, yz in this order
+      }
+      if (tilted) {
+        // A triclinic dump's bounds enclose the tilted box (LAMMPS's dump
+        // documentation): xlo_bound = xlo + min(0, xy, xz, xy + xz),
+        // xhi_bound = xhi + max(0, xy, xz, xy + xz), ylo_bound = ylo + min(0, yz),
+        // yhi_bound = yhi + max(0, yz).
+        const double xy = s.tilt[0], xz = s.tilt[1], yz = s.tilt[2];
+        (*lo)[0] -= std::min({0.0, xy, xz, xy + xz});
+        (*hi)[0] -= std::max({0.0, xy, xz, xy + xz});
+        (*lo)[1] -= std::min(0.0, yz);
+        (*hi)[1] -= std::max(0.0, yz);
       }
     } else if (item.substr(0, 5) == "ATOMS") {
       if (!n || !lo) throw InputError("ATOMS", "'ITEM: NUMBER OF ATOMS' and 'ITEM: BOX BOUNDS' must come first, at " + at.where());
@@ -223,6 +229,10 @@ ParticleSet parse_lammps_dump(std::string_view text, const std::string& name, st
         throw InputError("ATOMS", "no radius or diameter column at " + at.where() + " (dump ... radius or diameter)");
       const int dims = c.dims();
       if (dims < 0) throw InputError("ATOMS", "coordinates need x and y (and z in 3D) at " + at.where());
+      const bool tilted_box = s.tilt[0] != 0 || s.tilt[1] != 0 || s.tilt[2] != 0;
+      if (tilted_box && c.any_scaled() && !(c.scaled[0] && c.scaled[1] && (dims == 2 || c.scaled[2])))
+        throw InputError("ATOMS", "a tilted box's dump with scaled and unscaled coordinates mixed at " + at.where() +
+                                      " (dump xs ys zs, or x y z)");
       reserve(s, *n, dims);
       for (std::size_t i = 0; i < *n; ++i) {
         const auto row = split_ws(next_content(at, "ATOMS", std::to_string(*n) + " atoms are read (" + std::to_string(i) + " found)"));
@@ -231,15 +241,27 @@ ParticleSet parse_lammps_dump(std::string_view text, const std::string& name, st
                                         std::to_string(row.size()) + " at " + at.where());
         const double size = positive_number(row[c.size], c.diameter ? "diameter" : "radius", at);
         s.radii.push_back(c.diameter ? size / 2 : size);
+        std::array<double, 3> v{};
+        for (int a = 0; a < dims; ++a) v[a] = finite_number(row[c.axis[a]], std::string(1, "xyz"[a]), at);
+        // Scaled coordinates are fractional: x = lo + H s in a tilted box.
+        const double tx = c.scaled[1] ? s.tilt[0] * v[1] : 0.0, tz = dims == 3 && c.scaled[2] ? v[2] : 0.0;
         for (int a = 0; a < dims; ++a) {
-          const double v = finite_number(row[c.axis[a]], std::string(1, "xyz"[a]), at);
-          s.positions.push_back(c.scaled[a] ? (*lo)[a] + v * ((*hi)[a] - (*lo)[a]) : v);
+          if (!c.scaled[a]) {
+            s.positions.push_back(v[a]);
+            continue;
+          }
+          double x = (*lo)[a] + v[a] * ((*hi)[a] - (*lo)[a]);
+          if (a == 0) x += tx + s.tilt[1] * tz;
+          if (a == 1) x += s.tilt[2] * tz;
+          s.positions.push_back(x);
         }
       }
       if (s.radii.empty())
         throw InputError("ATOMS", "snapshot " + std::to_string(target) + " of " + name +
                                       " has no atoms; choose another with --frame");
       if (dims == 2) {  // a 2D dump: x and y only
+        if (s.tilt[1] != 0 || s.tilt[2] != 0)
+          throw InputError("BOX BOUNDS", name + " is 2D (x and y only) but its box tilts z (xz, yz not 0)");
         s.d = 2;
         for (std::size_t i = 0; i < s.size(); ++i)
           for (int a = 0; a < 2; ++a) s.positions[2 * i + a] -= (*lo)[a];

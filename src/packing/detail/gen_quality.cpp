@@ -2,10 +2,12 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <tuple>
 #include <vector>
 
 #include "hgridlab/packing/detail/gen_common.hpp"
 #include "hgridlab/packing/detail/gen_pairs.hpp"
+#include "hgridlab/grid/tilted.hpp"
 #include "hgridlab/packing/generate.hpp"
 
 namespace hgrid {
@@ -56,6 +58,37 @@ void pair_figures(const Packing& p, PackingQuality& q) {
         if (over > 0) q.max_rel_overlap = std::max(q.max_rel_overlap, over / r);
       }
   }
+  std::sort(rels.begin(), rels.end());
+  const double sum = std::accumulate(rels.begin(), rels.end(), 0.0);
+  q.mean_rel_overlap = q.overlapping_pairs ? sum / static_cast<double>(q.overlapping_pairs) : 0.0;
+  q.mean_contacts = p.size() ? 2.0 * static_cast<double>(contacts) / static_cast<double>(p.size()) : 0.0;
+}
+
+/// The same figures for a tilted box: its grid, its minimum image.
+template <int D>
+void tilted_pair_figures(const Packing& p, PackingQuality& q) {
+  auto spheres = p.spheres<D>();
+  for (auto& s : spheres) s.r *= 1 + kContactGap;
+  const TiltedBox<D> box = p.tilted_box<D>();
+  std::uint64_t contacts = 0;
+  std::vector<double> rels;
+  if (spheres.size() < 2) return;
+  double lo = spheres[0].r, hi = lo;
+  for (const auto& s : spheres) lo = std::min(lo, s.r), hi = std::max(hi, s.r);
+  const TiltedHGrid<D> grid(std::span<const Sphere<D>>(spheres), box,
+                            GridParams{detail::doubling_sizes(lo, hi), Search::bottom_up});
+  grid.for_each_pair([&](std::uint32_t i, std::uint32_t j) {
+    const auto& a = spheres[i].x;
+    const auto& b = spheres[j].x;
+    const double rs = p.radii[i] + p.radii[j];
+    const double dist = std::sqrt(detail::tilted_dist2<D>(box, a, b, detail::nearest_shift<D>(box, a, b)));
+    ++contacts;
+    if (dist < rs) {
+      ++q.overlapping_pairs;
+      rels.push_back((rs - dist) / rs);
+      q.max_rel_overlap = std::max(q.max_rel_overlap, rels.back());
+    }
+  });
   std::sort(rels.begin(), rels.end());
   const double sum = std::accumulate(rels.begin(), rels.end(), 0.0);
   q.mean_rel_overlap = q.overlapping_pairs ? sum / static_cast<double>(q.overlapping_pairs) : 0.0;
@@ -167,11 +200,29 @@ PackingQuality assess_packing(const Packing& p, const Distribution* dist, bool p
   q.nu = p.packing_fraction();
   if (!pairs) {
     q.max_rel_overlap = q.mean_rel_overlap = q.mean_contacts = -1;
-  } else if (p.d == 2)
+  } else if (p.tilted())
+    p.d == 2 ? tilted_pair_figures<2>(p, q) : tilted_pair_figures<3>(p, q);
+  else if (p.d == 2)
     p.boundary == Boundary::walls ? pair_figures<2, Boundary::walls>(p, q) : pair_figures<2, Boundary::periodic>(p, q);
   else
     p.boundary == Boundary::walls ? pair_figures<3, Boundary::walls>(p, q) : pair_figures<3, Boundary::periodic>(p, q);
-  slab_figures(p, q);
+  if (p.tilted()) {  // slabs between lattice planes: the mapped centres (grid/tilted_box.hpp) in the box of the lengths
+    Packing m = p;
+    m.tilt = {};
+    const auto map = [&](auto box) {
+      constexpr int D = std::tuple_size_v<decltype(box.length)>;
+      for (std::size_t i = 0; i < m.size(); ++i) {
+        std::array<double, D> x{};
+        for (int a = 0; a < D; ++a) x[a] = p.positions[i * D + a];
+        x = box.mapped(x);
+        for (int a = 0; a < D; ++a) m.positions[i * D + a] = x[a];
+      }
+    };
+    p.d == 2 ? map(p.tilted_box<2>()) : map(p.tilted_box<3>());
+    slab_figures(m, q);
+  } else {
+    slab_figures(p, q);
+  }
   if (dist) fit_figures(p, *dist, q);
   return q;
 }

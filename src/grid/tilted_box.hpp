@@ -1,0 +1,187 @@
+// A tilted (triclinic) periodic box: LAMMPS's lattice (docs.lammps.org,
+// "Howto triclinic"), edge vectors a = (lx, 0, 0), b = (xy, ly, 0),
+// c = (xz, yz, lz), i.e. x = H s with H upper triangular and s the fractional
+// coordinates; in 2D a = (lx, 0), b = (xy, ly). A Lees-Edwards box (an
+// orthogonal box whose images across the y faces are shifted along x by an
+// offset) is the same lattice with xy = the offset reduced into [-lx/2, lx/2).
+// Its grid is grid/tilted.hpp.
+#pragma once
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/grid/geometry.hpp"
+
+namespace hgrid {
+
+/// A periodic box with tilts (LAMMPS's triclinic box, origin at 0).
+template <int D>
+struct TiltedBox {
+  static_assert(D == 2 || D == 3, "d = 2 or 3");
+  Extent<D> length{};                 // lx, ly (, lz), all > 0
+  std::array<double, 3> tilt{};       // xy, xz, yz (2D: xy only; the others must be 0)
+
+  /// The orthogonal box (all tilts 0).
+  static TiltedBox orthogonal(const Extent<D>& l) { return TiltedBox{l, {}}; }
+  /// Lees-Edwards: the images across the y faces shifted by `offset` along x.
+  static TiltedBox lees_edwards(const Extent<D>& l, double offset) {
+    TiltedBox b{l, {}};
+    b.tilt[0] = offset - l[0] * std::nearbyint(offset / l[0]);
+    return b;
+  }
+
+  bool tilted() const { return tilt[0] != 0 || tilt[1] != 0 || tilt[2] != 0; }
+  double volume() const {
+    double v = 1;
+    for (int k = 0; k < D; ++k) v *= length[k];
+    return v;
+  }
+
+  /// Fractional coordinates of a displacement (or a position): H^-1 x.
+  std::array<double, D> fractional(const std::array<double, D>& x) const {
+    std::array<double, D> s{};
+    if constexpr (D == 3) {
+      s[2] = x[2] / length[2];
+      s[1] = (x[1] - tilt[2] * s[2]) / length[1];
+      s[0] = (x[0] - tilt[0] * s[1] - tilt[1] * s[2]) / length[0];
+    } else {
+      s[1] = x[1] / length[1];
+      s[0] = (x[0] - tilt[0] * s[1]) / length[0];
+    }
+    return s;
+  }
+  /// Cartesian vector of integer (or fractional) lattice coordinates: H n.
+  std::array<double, D> cartesian(const std::array<double, D>& n) const {
+    std::array<double, D> x{};
+    if constexpr (D == 3) {
+      x[0] = length[0] * n[0] + tilt[0] * n[1] + tilt[1] * n[2];
+      x[1] = length[1] * n[1] + tilt[2] * n[2];
+      x[2] = length[2] * n[2];
+    } else {
+      x[0] = length[0] * n[0] + tilt[0] * n[1];
+      x[1] = length[1] * n[1];
+    }
+    return x;
+  }
+  /// Perpendicular width of the box across face k (the distance between the
+  /// two lattice planes s_k = 0 and s_k = 1): 1 / |row k of H^-1|.
+  double width(int k) const {
+    std::array<double, D> row{};  // row k of H^-1, from H^-1 applied to the unit vectors
+    for (int a = 0; a < D; ++a) {
+      std::array<double, D> e{};
+      e[a] = 1;
+      row[a] = fractional(e)[k];
+    }
+    double n2 = 0;
+    for (const double v : row) n2 += v * v;
+    return 1 / std::sqrt(n2);
+  }
+  double min_width() const {
+    double w = width(0);
+    for (int k = 1; k < D; ++k) w = std::min(w, width(k));
+    return w;
+  }
+
+  /// The mapped position A x = diag(l) H^-1 x, wrapped into the orthogonal box.
+  std::array<double, D> mapped(const std::array<double, D>& x) const {
+    std::array<double, D> s = fractional(x), m{};
+    for (int k = 0; k < D; ++k) m[k] = detail::wrap(length[k] * (s[k] - std::floor(s[k])), length[k]);
+    return m;
+  }
+
+  /// c: the largest singular value of A, the most a length grows by the map
+  /// (exactly 1 at zero tilt; otherwise raised by 1e-9 so that rounding
+  /// cannot make a mapped sphere smaller than the ellipsoid it stands for).
+  double inflation() const {
+    if (!tilted()) return 1.0;
+    // A's columns are A e_a; the largest eigenvalue of A^T A by Jacobi rotations.
+    double M[3][3] = {};
+    std::array<std::array<double, D>, D> col{};
+    for (int a = 0; a < D; ++a) {
+      std::array<double, D> e{};
+      e[a] = 1;
+      const std::array<double, D> s = fractional(e);
+      for (int k = 0; k < D; ++k) col[a][k] = length[k] * s[k];
+    }
+    for (int a = 0; a < D; ++a)
+      for (int b = 0; b < D; ++b)
+        for (int k = 0; k < D; ++k) M[a][b] += col[a][k] * col[b][k];
+    for (int sweep = 0; sweep < 64; ++sweep) {
+      double off = 0;
+      for (int p = 0; p < D; ++p)
+        for (int q = p + 1; q < D; ++q) off += M[p][q] * M[p][q];
+      if (off < 1e-30) break;
+      for (int p = 0; p < D; ++p)
+        for (int q = p + 1; q < D; ++q) {
+          if (M[p][q] == 0) continue;
+          const double theta = (M[q][q] - M[p][p]) / (2 * M[p][q]);
+          const double t = (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1));
+          const double cs = 1 / std::sqrt(t * t + 1), sn = t * cs;
+          for (int k = 0; k < D; ++k) {  // M <- M J, then J^T M
+            const double mp = M[k][p], mq = M[k][q];
+            M[k][p] = cs * mp - sn * mq;
+            M[k][q] = sn * mp + cs * mq;
+          }
+          for (int k = 0; k < D; ++k) {
+            const double mp = M[p][k], mq = M[q][k];
+            M[p][k] = cs * mp - sn * mq;
+            M[q][k] = sn * mp + cs * mq;
+          }
+        }
+    }
+    double lmax = 0;
+    for (int k = 0; k < D; ++k) lmax = std::max(lmax, M[k][k]);
+    return std::sqrt(lmax) * (1 + 1e-9);
+  }
+
+  /// Throws InputError unless the lengths are finite and > 0, the tilts
+  /// finite (2D: xz = yz = 0), and, when tilted, the box wide enough for the
+  /// minimum image of pairs up to `d_max` apart (d_max < half the narrowest
+  /// width; an orthogonal box is the HGrid's, which needs no such margin).
+  void check(double d_max) const {
+    static const char* const name[3] = {"lx", "ly", "lz"};
+    for (int k = 0; k < D; ++k)
+      if (!(std::isfinite(length[k]) && length[k] > 0))
+        throw InputError("box", std::string(name[k]) + " must be finite and > 0");
+    static const char* const tname[3] = {"xy", "xz", "yz"};
+    for (int k = 0; k < 3; ++k) {
+      if (!std::isfinite(tilt[k])) throw InputError("box", std::string(tname[k]) + " tilt must be finite");
+      if (D == 2 && k > 0 && tilt[k] != 0) throw InputError("box", std::string(tname[k]) + " tilt must be 0 in 2D");
+    }
+    if (tilted() && !(d_max < 0.5 * min_width()))
+      throw InputError("box", "the tilted box's narrowest width " + std::to_string(min_width()) +
+                                  " must exceed twice the largest diameter (" + std::to_string(2 * d_max) +
+                                  "): tilts nearer 0, or a larger box");
+  }
+};
+
+namespace detail {
+/// The lattice's displacement from a to b nearest in fractional terms:
+/// (b - a) + H n with n = -round(H^-1 (b - a)), and its squared length.
+template <int D>
+inline double tilted_dist2(const TiltedBox<D>& box, const std::array<double, D>& a, const std::array<double, D>& b,
+                           const std::array<double, D>& shift) {
+  std::array<double, D> dx{};
+  for (int k = 0; k < D; ++k) dx[k] = b[k] - a[k];
+  const std::array<double, D> v = box.cartesian(shift);
+  double s = 0;
+  for (int k = 0; k < D; ++k) {
+    const double e = dx[k] + v[k];
+    s += e * e;
+  }
+  return s;
+}
+template <int D>
+inline std::array<double, D> nearest_shift(const TiltedBox<D>& box, const std::array<double, D>& a,
+                                           const std::array<double, D>& b) {
+  std::array<double, D> dx{};
+  for (int k = 0; k < D; ++k) dx[k] = b[k] - a[k];
+  std::array<double, D> n = box.fractional(dx);
+  for (auto& v : n) v = -std::nearbyint(v);
+  return n;
+}
+}  // namespace detail
+
+}  // namespace hgrid

@@ -1,0 +1,167 @@
+// Tilted (triclinic) boxes through files and the tool: the HDF5 attribute,
+// the LAMMPS data file and dump, the exports, and the commands that search
+// (pairs against its brute force, count) or refuse (walls, --decompose).
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "cli_support.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/io/lammps_export.hpp"
+#include "hgridlab/io/packing_file.hpp"
+#include "hgridlab/io/particle_file.hpp"
+#include "hgridlab/measure/measurement.hpp"
+#include "hgridlab/measure/pairs.hpp"
+#include "support.hpp"
+
+namespace hgrid::test {
+namespace {
+
+/// N spheres at uniform fractional coordinates of a tilted box (seeded).
+Packing tilted_packing(int d, std::size_t n, const std::array<double, 3>& tilt, std::uint64_t seed,
+                       const std::array<double, 3>& box = {30.0, 27.0, 24.0}) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Packing p;
+  p.d = d;
+  p.box = {box[0], box[1], d == 3 ? box[2] : 0.0};
+  p.tilt = tilt;
+  for (std::size_t i = 0; i < n; ++i) {
+    p.radii.push_back(0.5 + 1.5 * u(rng));
+    if (d == 3) {
+      const std::array<double, 3> x = p.tilted_box<3>().cartesian({u(rng), u(rng), u(rng)});
+      p.positions.insert(p.positions.end(), x.begin(), x.end());
+    } else {
+      const std::array<double, 2> x = p.tilted_box<2>().cartesian({u(rng), u(rng)});
+      p.positions.insert(p.positions.end(), x.begin(), x.end());
+    }
+  }
+  return p;
+}
+
+std::vector<Pair> pairs_of(const Packing& p, bool brute) {
+  std::vector<Pair> out;
+  const auto add = [&](int, std::uint32_t i, std::uint32_t j) { out.emplace_back(i, j); };
+  if (brute) for_each_packing_pair_brute(p, add);
+  else for_each_packing_pair(p, GridParams{{2.0, 4.0}}, add);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+class TiltedFiles : public TempDir {};
+
+TEST_F(TiltedFiles, Hdf5KeepsTheTiltsInAnyReader) {
+  for (int d : {2, 3}) {
+    const Packing p = tilted_packing(d, 400, {9.0, d == 3 ? -4.0 : 0.0, d == 3 ? 6.5 : 0.0}, 7 + d);
+    const std::string f = path("t" + std::to_string(d) + ".h5");
+    write_packing(f, p);
+    for (Isolation iso : {Isolation::none, Isolation::child_process}) {
+      const Packing q = read_packing(f, iso);
+      EXPECT_EQ(q.tilt, p.tilt);
+      EXPECT_EQ(pairs_of(q, false), pairs_of(p, true));
+    }
+  }
+}
+
+TEST_F(TiltedFiles, LammpsDataFileRoundTrip) {
+  const Packing p = tilted_packing(3, 300, {-7.0, 5.0, 3.0}, 3);
+  const std::string text = lammps_data(p);
+  EXPECT_NE(text.find("-7 5 3 xy xz yz"), std::string::npos);
+  const Packing q = to_packing(parse_particles(text, "t.data"), "t.data");
+  EXPECT_EQ(q.tilt, p.tilt);
+  EXPECT_EQ(pairs_of(q, false), pairs_of(p, true));
+  // A 2D box leans only xy; xz or yz in a flat file is refused.
+  Packing flat = tilted_packing(2, 50, {4.0, 0, 0}, 4);
+  const Packing r = to_packing(parse_particles(lammps_data(flat), "f.data"), "f.data");
+  EXPECT_EQ(r.d, 2);
+  EXPECT_EQ(r.tilt[0], 4.0);
+  std::string bad = lammps_data(flat);
+  bad.replace(bad.find("4 0 0 xy xz yz"), 14, "4 1 0 xy xz yz");
+  EXPECT_THROW(parse_particles(bad, "b.data"), InputError);
+}
+
+// A triclinic dump's bounds enclose the tilted box; scaled columns are
+// fractional coordinates. Hand-worked: lx = 10, ly = 8, lz = 6, xy = 2,
+// xz = -1, yz = 3 from the origin (1, 2, 3): xlo_bound = 1 + min(0, 2, -1, 1)
+// = 0, xhi_bound = 11 + max(0, 2, -1, 1) = 13, ylo_bound = 2, yhi_bound = 13.
+TEST_F(TiltedFiles, LammpsDumpBoundsAndScaledColumns) {
+  const std::string head =
+      "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS xy xz yz pp pp pp\n0 13 2\n2 13 -1\n3 9 3\n";
+  const ParticleSet s = parse_particles(head + "ITEM: ATOMS id xs ys zs radius\n1 0.5 0.25 0.5 1\n", "s.dump");
+  ASSERT_TRUE(s.box);
+  EXPECT_EQ(*s.box, (std::array<double, 3>{10, 8, 6}));
+  EXPECT_EQ(s.tilt, (std::array<double, 3>{2, -1, 3}));
+  // x = xlo + 0.5 * 10 + 0.25 * 2 + 0.5 * (-1) = 1 + 5, y = 2 + 2 + 1.5, z = 3 + 3; then minus the origin.
+  ASSERT_EQ(s.positions.size(), 3u);
+  EXPECT_DOUBLE_EQ(s.positions[0], 5.0);
+  EXPECT_DOUBLE_EQ(s.positions[1], 3.5);
+  EXPECT_DOUBLE_EQ(s.positions[2], 3.0);
+  const ParticleSet x = parse_particles(head + "ITEM: ATOMS id x y z radius\n1 6 5.5 6 1\n", "x.dump");
+  EXPECT_EQ(x.positions, s.positions);
+  EXPECT_THROW(parse_particles(head + "ITEM: ATOMS id xs y zs radius\n1 0.5 5.5 0.5 1\n", "m.dump"), InputError);
+}
+
+TEST_F(TiltedFiles, ExtendedXyzLatticeHasTheTilts) {
+  const Packing p = tilted_packing(3, 20, {2.0, -1.0, 3.0}, 5);
+  write_packing(path("p.h5"), p);
+  const Result r = hgrid_run("export " + path("p.h5") + " --xyz " + path("p.xyz"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::ifstream in(path("p.xyz"));
+  std::string n, header;
+  std::getline(in, n);
+  std::getline(in, header);
+  EXPECT_NE(header.find("Lattice=\"30 0 0 2 27 0 -1 3 24\""), std::string::npos) << header;
+}
+
+TEST_F(TiltedFiles, ToolSearchesAndRefuses) {
+  const Packing p = tilted_packing(3, 800, {10.0, -6.0, 9.0}, 11);
+  write_packing(path("p.h5"), p);
+  const Result g = hgrid_run("pairs " + path("p.h5") + " --cells optimal --threads 2");
+  const Result b = hgrid_run("pairs " + path("p.h5") + " --brute");
+  ASSERT_EQ(g.status, 0) << g.err;
+  ASSERT_EQ(b.status, 0) << b.err;
+  const auto sorted_lines = [](const std::string& s) {
+    std::vector<std::string> l;
+    std::stringstream ss(s);
+    for (std::string x; std::getline(ss, x);) l.push_back(x);
+    std::sort(l.begin(), l.end());
+    return l;
+  };
+  EXPECT_EQ(sorted_lines(g.out), sorted_lines(b.out));
+  EXPECT_GT(sorted_lines(b.out).size(), 50u);
+  const Result c = hgrid_run("count " + path("p.h5") + " --cells optimal --json");
+  ASSERT_EQ(c.status, 0) << c.err;
+  EXPECT_NE(c.out.find("\"tilt_inflation\""), std::string::npos);
+  EXPECT_NE(c.out.find("\"contacts\": " + std::to_string(sorted_lines(b.out).size())), std::string::npos);
+  // The decomposed search cuts orthogonal bricks: refused, one line, exit 2.
+  const Result dcmp = hgrid_run("count " + path("p.h5") + " --decompose --sizes 4");
+  EXPECT_EQ(dcmp.status, 2);
+  EXPECT_NE(dcmp.err.find("tilted box"), std::string::npos) << dcmp.err;
+  // A tilted box with walls is no lattice.
+  Packing w = p;
+  w.boundary = Boundary::walls;
+  EXPECT_THROW(validate(w), InputError);
+}
+
+// The model of a tilted box's work is the random-centres model of the mapped
+// packing (docs/MODEL.md section 12): term by term on a seeded packing. A
+// cubic box: the periodic grid fits its cells alike on every axis, as the
+// model's one size per level assumes.
+TEST(TiltedModel, CountsFollowTheMappedModel) {
+  constexpr double kTol = 0.01;  // one packing of 3 * 10^4 random centres: counting noise ~0.3 %
+  const Packing p = tilted_packing(3, 30000, {15.0, 0.0, 0.0}, 12, {30.0, 30.0, 30.0});
+  Packing big = p;  // the same centres in a box 4x larger per side: nu ~ 0.1
+  for (int a = 0; a < 3; ++a) big.box[a] *= 4;
+  for (auto& t : big.tilt) t *= 4;
+  for (auto& x : big.positions) x *= 4;
+  MeasureOptions o;
+  o.model = true;
+  const Measurement m = measure(big, GridParams{{2.0, 4.0}}, o);
+  ASSERT_GT(m.tilt_inflation, 1.0);
+  ASSERT_TRUE(std::isfinite(m.model_T_over_N)) << m.model_skipped;
+  EXPECT_NEAR(m.T_cd_over_N / m.model_T_cd_over_N, 1.0, kTol);
+  EXPECT_NEAR(m.T_ca_over_N / m.model_T_ca_over_N, 1.0, kTol);
+}
+
+}  // namespace
+}  // namespace hgrid::test
