@@ -96,6 +96,41 @@ void sweep(std::size_t n) {
         }
 }
 
+/// Wide size ratios (omega 10 and 100): sparse packings, so that the box
+/// stays wider than 4 r_max at the largest tilts.
+template <int D, Search S>
+void wide_sweep() {
+  std::uint64_t seed = 7000 + 100 * D + static_cast<int>(S);
+  const std::vector<std::array<double, 3>> tilts =
+      D == 2 ? std::vector<std::array<double, 3>>{{0.5, 0, 0}, {-0.25, 0, 0}}
+             : std::vector<std::array<double, 3>>{{0.5, 0.5, 0.5}, {0.25, -0.1, 0.45}};
+  for (const auto& tilt : tilts)
+    for (double omega : {10.0, 100.0})
+      for (int L : {1, 4}) {
+        ++seed;
+        const std::size_t n = D == 2 ? 2000 : 4000;
+        const auto [s, box] = tilted_scene<D>(n, D == 2 ? 0.1 : 0.01, -3.0, omega, tilt, seed);
+        double rmin = 1e300, rmax = 0;
+        for (const auto& p : s) rmin = std::min(rmin, p.r), rmax = std::max(rmax, p.r);
+        SCOPED_TRACE(::testing::Message() << "seed=" << seed << " d=" << D << " " << to_string(S) << " tilt=("
+                                          << tilt[0] << "," << tilt[1] << "," << tilt[2] << ") omega=" << omega
+                                          << " L=" << L);
+        ASSERT_LT(4 * rmax, box.min_width());
+        const auto expect = brute_tilted<D>(s, box);
+        ASSERT_FALSE(expect.empty());
+        for (int threads : {1, 2}) {
+          const auto [got, c] = tilted_pairs<D, S>(s, box, exponential_sizes(L, rmin, rmax), threads);
+          ASSERT_EQ(got, expect) << threads << " threads";
+          ASSERT_EQ(c.contacts, expect.size());
+        }
+      }
+}
+
+TEST(HGridTilted, WideRatiosD2TopDown) { wide_sweep<2, Search::top_down>(); }
+TEST(HGridTilted, WideRatiosD2BottomUp) { wide_sweep<2, Search::bottom_up>(); }
+TEST(HGridTilted, WideRatiosD3TopDown) { wide_sweep<3, Search::top_down>(); }
+TEST(HGridTilted, WideRatiosD3BottomUp) { wide_sweep<3, Search::bottom_up>(); }
+
 TEST(HGridTilted, D2TopDown) { sweep<2, Search::top_down>(500); }
 TEST(HGridTilted, D2BottomUp) { sweep<2, Search::bottom_up>(500); }
 TEST(HGridTilted, D3TopDown) { sweep<3, Search::top_down>(700); }
@@ -162,6 +197,10 @@ TEST(HGridTilted, RefusesTooNarrowABox) {
   EXPECT_NO_THROW(TiltedHGrid<3>(std::span<const Sphere<3>>(s), box, GridParams{{4.0}}));
   s[0].r = 5.0;  // 4 r_max = 20 > 17.9
   EXPECT_THROW(TiltedHGrid<3>(std::span<const Sphere<3>>(s), box, GridParams{{10.0}}), InputError);
+  // Beyond LAMMPS's limit (|xy| <= lx/2): refused; at it: searched.
+  EXPECT_THROW(TiltedHGrid<3>(std::span<const Sphere<3>>(s), TiltedBox<3>{{40, 40, 40}, {20.5, 0, 0}}, GridParams{{10.0}}),
+               InputError);
+  EXPECT_NO_THROW(TiltedHGrid<3>(std::span<const Sphere<3>>(s), TiltedBox<3>{{40, 40, 40}, {0, -20, 20}}, GridParams{{10.0}}));
   const TiltedBox<2> bad{{10, 10}, {std::nan(""), 0, 0}};
   std::vector<Sphere<2>> s2{{{1, 1}, 1.0}};
   EXPECT_THROW(TiltedHGrid<2>(std::span<const Sphere<2>>(s2), bad, GridParams{{2.0}}), InputError);

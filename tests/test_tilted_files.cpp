@@ -80,6 +80,28 @@ TEST_F(TiltedFiles, LammpsDataFileRoundTrip) {
   EXPECT_THROW(parse_particles(bad, "b.data"), InputError);
 }
 
+// A tilt beyond LAMMPS's limit: one line naming the field, the tilt and
+// file:line; exit 2 and nothing written.
+TEST_F(TiltedFiles, TiltBeyondTheLimitIsRefused) {
+  const std::string data = "t\n\n1 atoms\n0 10 xlo xhi\n0 10 ylo yhi\n0 10 zlo zhi\n0 0 5.5 xy xz yz\n\n"
+                           "Atoms # sphere\n\n1 1 1 1 1 1 1\n";
+  try {
+    parse_particles(data, "f.data");
+    ADD_FAILURE() << "not refused";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "box");
+    EXPECT_NE(std::string(e.what()).find("yz = 5.5"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("f.data:7"), std::string::npos) << e.what();
+  }
+  std::ofstream(path("f.data")) << data;
+  const Result r = hgrid_run("export " + path("f.data") + " --lammps " + path("out"));
+  EXPECT_EQ(r.status, 2);
+  EXPECT_FALSE(fs::exists(path("out")));
+  const std::string dump =
+      "ITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS xy xz yz pp pp pp\n0 19 7\n0 10 0\n0 10 0\nITEM: ATOMS x y z radius\n1 1 1 1\n";
+  EXPECT_THROW(parse_particles(dump, "f.dump"), InputError);  // xy = 7 > lx/2 = 6 (lx = 19 - 7)
+}
+
 // A triclinic dump's bounds enclose the tilted box; scaled columns are
 // fractional coordinates. Hand-worked: lx = 10, ly = 8, lz = 6, xy = 2,
 // xz = -1, yz = 3 from the origin (1, 2, 3): xlo_bound = 1 + min(0, 2, -1, 1)

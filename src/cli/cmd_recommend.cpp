@@ -31,7 +31,7 @@ struct RecommendOptions {
 /// Every key of --json, for --help and docs/RECOMMEND.md.
 constexpr const char* kJsonKeys =
     "--json keys: file, format (hdf5|table|lammps_data|lammps_dump), n, d, r_min, r_max, omega (r_max/r_min), "
-    "nu, nu_source (box|given), box (side lengths or null), boundary, K, K_source (given|calibration|paper), "
+    "nu, nu_source (box|given), box (side lengths or null), tilt (a tilted box's xy [xz yz], or null), boundary, K, K_source (given|calibration|paper), "
     "calibration_path, K_note (why a stored calibration was not used, or empty), search, levels, sizes (exact cell sizes, file's unit), sizes_pasted (rounded up to 6 digits, "
     "as in the settings), fraction_per_level, particles_per_cell, T_over_N, T_cd_over_N (overlap tests), "
     "T_ca_over_N (cell accesses), linked_cell_size (2 r_max), linked_cell_T_over_N, speedup "
@@ -98,6 +98,9 @@ void print_json(const RecommendOptions& o, const ParticleSet& s, const FileInput
   j["nu"] = in.nu;
   j["nu_source"] = in.nu_from_box ? "box" : "given";
   j["box"] = s.box ? nlohmann::json(std::vector<double>(s.box->begin(), s.box->begin() + in.d)) : nlohmann::json();
+  const bool tilted = s.tilt[0] != 0 || s.tilt[1] != 0 || s.tilt[2] != 0;
+  j["tilt"] = tilted ? nlohmann::json(std::vector<double>(s.tilt.begin(), s.tilt.begin() + (in.d == 2 ? 1 : 3)))
+                     : nlohmann::json();
   j["boundary"] = boundary_description(s);
   std::cout << j.dump(2) << "\n";
 }

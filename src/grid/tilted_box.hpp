@@ -16,6 +16,10 @@
 
 namespace hgrid {
 
+/// How far past half an edge a tilt may lie and still be at LAMMPS's limit
+/// (a box written at the limit reads back a few ulps beyond it).
+inline constexpr double kTiltLimitRelTol = 1e-12;
+
 /// A periodic box with tilts (LAMMPS's triclinic box, origin at 0).
 template <int D>
 struct TiltedBox {
@@ -136,6 +140,21 @@ struct TiltedBox {
     return std::sqrt(lmax) * (1 + 1e-9);
   }
 
+  /// LAMMPS's limit on a tilt: |xy| <= lx/2, |xz| <= lx/2, |yz| <= ly/2
+  /// (a tilt beyond it is the same lattice as one within, which LAMMPS
+  /// writes instead: its box flips). "" within, else what is beyond.
+  std::string beyond_limit() const {
+    static const char* const tname[3] = {"xy", "xz", "yz"};
+    static const char* const lname[3] = {"lx", "lx", "ly"};
+    for (int k = 0; k < (D == 2 ? 1 : 3); ++k) {
+      const double l = length[k == 2 ? 1 : 0];
+      if (std::abs(tilt[k]) > 0.5 * l * (1 + kTiltLimitRelTol))
+        return std::string("tilt ") + tname[k] + " = " + format_number(tilt[k]) + " is beyond LAMMPS's limit |" +
+               tname[k] + "| <= " + lname[k] + "/2 = " + format_number(0.5 * l);
+    }
+    return "";
+  }
+
   /// Throws InputError unless the lengths are finite and > 0, the tilts
   /// finite (2D: xz = yz = 0), and, when tilted, the box wide enough for the
   /// minimum image of pairs up to `d_max` apart (d_max < half the narrowest
@@ -150,6 +169,7 @@ struct TiltedBox {
       if (!std::isfinite(tilt[k])) throw InputError("box", std::string(tname[k]) + " tilt must be finite");
       if (D == 2 && k > 0 && tilt[k] != 0) throw InputError("box", std::string(tname[k]) + " tilt must be 0 in 2D");
     }
+    if (const std::string e = beyond_limit(); !e.empty()) throw InputError("box", e);
     if (tilted() && !(d_max < 0.5 * min_width()))
       throw InputError("box", "the tilted box's narrowest width " + std::to_string(min_width()) +
                                   " must exceed twice the largest diameter (" + std::to_string(2 * d_max) +

@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "hgridlab/base/error.hpp"
+#include "hgridlab/grid/tilted_box.hpp"
 #include "hgridlab/io/detail/table_reader.hpp"
 #include "hgridlab/io/detail/text_lines.hpp"
 
@@ -52,6 +53,13 @@ void finish(ParticleSet& s, const std::array<double, 3>& lo, const std::array<do
   s.d = 2;
 }
 
+/// A tilt beyond LAMMPS's limit (grid/tilted_box.hpp) is refused at `where`.
+void check_tilt_limit(const std::array<double, 3>& tilt, const std::array<double, 3>& lo,
+                      const std::array<double, 3>& hi, const std::string& field, const std::string& where) {
+  const TiltedBox<3> box{{hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}, tilt};
+  if (const std::string e = box.beyond_limit(); !e.empty()) throw InputError(field, e + " at " + where);
+}
+
 /// The next non-blank line, or InputError(field) at the end of the text.
 std::string_view next_content(Lines& at, const std::string& field, const std::string& what) {
   std::string_view line;
@@ -96,6 +104,7 @@ ParticleSet parse_lammps_data(std::string_view text, const std::string& name) {
   ParticleSet s = empty_set(ParticleFormat::lammps_data);
   std::optional<std::size_t> n;
   std::array<double, 3> lo{-0.5, -0.5, -0.5}, hi{0.5, 0.5, 0.5};  // LAMMPS's defaults
+  std::string tilt_at;  // file:line of the tilts
   std::string_view line;
   at.next(line);  // the title
   bool header = true;
@@ -112,6 +121,7 @@ ParticleSet parse_lammps_data(std::string_view text, const std::string& name) {
         throw InputError("atom_style", "the Atoms section is '" + style + "' at " + at.where() +
                                            "; hgridlab reads atom_style sphere (id type diameter density x y z)");
       if (!n) throw InputError("atoms", "no 'N atoms' line before the Atoms section in " + name);
+      check_tilt_limit(s.tilt, lo, hi, "box", tilt_at);
       reserve(s, *n, 3);
       for (std::size_t i = 0; i < *n; ++i) {
         const auto row = split_ws(before_comment(
@@ -141,6 +151,7 @@ ParticleSet parse_lammps_data(std::string_view text, const std::string& name) {
       // LAMMPS writes the tilts of any triclinic box, zero ones too (a shear
       // run starts from one): a box without tilt is orthogonal.
       for (int k = 0; k < 3; ++k) s.tilt[k] = finite_number(toks[k], "box", at);
+      tilt_at = at.where();
     }
   }
   throw InputError("Atoms", "no 'Atoms' section in " + name);
@@ -212,6 +223,7 @@ ParticleSet parse_lammps_dump(std::string_view text, const std::string& name, st
         (*hi)[0] -= std::max({0.0, xy, xz, xy + xz});
         (*lo)[1] -= std::min(0.0, yz);
         (*hi)[1] -= std::max(0.0, yz);
+        check_tilt_limit(s.tilt, *lo, *hi, "BOX BOUNDS", at.where());
       }
     } else if (item.substr(0, 5) == "ATOMS") {
       if (!n || !lo) throw InputError("ATOMS", "'ITEM: NUMBER OF ATOMS' and 'ITEM: BOX BOUNDS' must come first, at " + at.where());
