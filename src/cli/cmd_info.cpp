@@ -83,7 +83,7 @@ void run_info(const InfoOptions& o) {
 void register_info_command(CLI::App& app) {
   auto o = std::make_shared<InfoOptions>();
   auto* sub = app.add_subcommand("info", "quality of a packing file, or --rcp: random close packing estimate");
-  sub->add_option("file", o->file, "packing file (HDF5, CSV/text, LAMMPS data or dump, MercuryDPM .data)");
+  sub->add_option("file", o->file, "packing file (HDF5, CSV/text, LAMMPS data or dump, MercuryDPM .data or .restart)");
   add_frame_option(sub, o->frame);
   sub->add_flag("--json", o->json, "JSON output");
   sub->add_flag("--rcp", o->rcp, "print the random close packing estimate of a distribution");

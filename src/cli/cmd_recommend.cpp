@@ -30,7 +30,7 @@ struct RecommendOptions {
 
 /// Every key of --json, for --help and docs/RECOMMEND.md.
 constexpr const char* kJsonKeys =
-    "--json keys: file, format (hdf5|table|lammps_data|lammps_dump), n, d, r_min, r_max, omega (r_max/r_min), "
+    "--json keys: file, format (hdf5|table|lammps_data|lammps_dump|mercury_data|mercury_restart), n, d, r_min, r_max, omega (r_max/r_min), "
     "nu, nu_source (box|given), box (side lengths or null), tilt (a tilted box's xy [xz yz], or null), boundary, K, K_source (given|calibration|paper), "
     "calibration_path, K_note (why a stored calibration was not used, or empty), search, levels, sizes (exact cell sizes, file's unit), sizes_pasted (rounded up to 6 digits, "
     "as in the settings), fraction_per_level, particles_per_cell, T_over_N, T_cd_over_N (overlap tests), "
@@ -126,7 +126,7 @@ void register_recommend_commands(CLI::App& app) {
   auto o = std::make_shared<RecommendOptions>();
   auto* sub = app.add_subcommand("recommend", "cell sizes for your own particles, and settings for LAMMPS and MercuryDPM");
   sub->add_option("FILE", o->file,
-                  "particle file (HDF5, CSV/text, LAMMPS data or dump, MercuryDPM .data; docs/PARTICLE_FILES.md)")
+                  "particle file (HDF5, CSV/text, LAMMPS data or dump, MercuryDPM .data or .restart; docs/PARTICLE_FILES.md)")
       ->required();
   add_frame_option(sub, o->frame);
   sub->add_option("--nu", o->nu, "packing fraction (default: from the file's box; needed when it has none)");

@@ -7,7 +7,7 @@
 namespace hgrid::cli {
 
 void add_grid_options(CLI::App* sub, GridOptions& o) {
-  sub->add_option("FILE", o.file, "packing file (HDF5, CSV/text, LAMMPS data or dump, MercuryDPM .data)")->required();
+  sub->add_option("FILE", o.file, "packing file (HDF5, CSV/text, LAMMPS data or dump, MercuryDPM .data or .restart)")->required();
   add_frame_option(sub, o.frame);
   sub->add_option("--d", o.d, "the file's dimension, 2 or 3: refused if the file's differs (default: the file's)");
   auto* sizes = sub->add_option("--sizes", o.sizes, "cell sizes s1,s2,...,sL (increasing, same unit as the radii)");

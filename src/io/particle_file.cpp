@@ -52,6 +52,7 @@ const char* to_string(ParticleFormat f) {
     case ParticleFormat::lammps_data: return "lammps_data";
     case ParticleFormat::lammps_dump: return "lammps_dump";
     case ParticleFormat::mercury_data: return "mercury_data";
+    case ParticleFormat::mercury_restart: return "mercury_restart";
   }
   return "?";
 }
@@ -75,6 +76,7 @@ ParticleSet parse_particles(std::string_view text, const std::string& name, std:
   if (detail::trim(line).substr(0, 5) == "ITEM:") return detail::parse_lammps_dump(text, name, frame);
   if (detail::looks_like_mercury_data(text)) return detail::parse_mercury_data(text, name, frame);
   detail::resolve_frame(frame, 1, name);  // one snapshot
+  if (detail::looks_like_mercury_restart(text)) return detail::parse_mercury_restart(text, name);
   if (detail::looks_like_lammps_data(text)) return detail::parse_lammps_data(text, name);
   return detail::parse_table(text, name);
 }

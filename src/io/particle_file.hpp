@@ -17,13 +17,14 @@
 
 namespace hgrid {
 
-enum class ParticleFormat { hdf5, table, lammps_data, lammps_dump, mercury_data };
+enum class ParticleFormat { hdf5, table, lammps_data, lammps_dump, mercury_data, mercury_restart };
 const char* to_string(ParticleFormat f);
 
 /// What every reader says when a file matches no format.
 inline constexpr const char* kParticleFormats =
     "HDF5 packing (.h5), CSV or whitespace text with columns x y [z] and r|radius or d|diameter, a LAMMPS data "
-    "file (Atoms # sphere), a LAMMPS dump (ITEM: ATOMS ... x y z radius|diameter) or a MercuryDPM .data file";
+    "file (Atoms # sphere), a LAMMPS dump (ITEM: ATOMS ... x y z radius|diameter), or a MercuryDPM .data or "
+    ".restart file";
 
 struct ParticleSet {
   ParticleFormat format = ParticleFormat::table;
@@ -33,7 +34,7 @@ struct ParticleSet {
   std::optional<std::array<double, 3>> box;  // side lengths (first d used), when the file has a box
   std::array<double, 3> tilt{};       // a tilted (triclinic) box's xy xz yz (LAMMPS; grid/tilted_box.hpp), else 0
   std::optional<Boundary> boundary;   // when the file says (`# boundary`, dump flags, HDF5)
-  bool mixed_boundary = false;        // a LAMMPS dump with periodic and non-periodic axes
+  bool mixed_boundary = false;        // periodic and non-periodic axes (a LAMMPS dump, a MercuryDPM .restart)
   std::size_t frame = 0, frames = 1;  // the snapshot read, of how many the file holds (dumps, MercuryDPM .data)
   std::size_t size() const { return radii.size(); }
   bool has_positions() const { return !positions.empty(); }

@@ -23,4 +23,13 @@ bool looks_like_mercury_data(std::string_view text);
 /// say the boundary.
 ParticleSet parse_mercury_data(std::string_view text, const std::string& name, std::optional<std::int64_t> frame);
 
+/// A MercuryDPM .restart file (mercury_restart.cpp): its first line names
+/// MercuryDPM (or restart_version).
+bool looks_like_mercury_restart(std::string_view text);
+
+/// Its particles (one snapshot), dimension, box and boundary: periodic where
+/// Periodic, Lees-Edwards or shear-box boundaries say (a shift across y is
+/// the tilt xy), else walled between its walls or its domain.
+ParticleSet parse_mercury_restart(std::string_view text, const std::string& name);
+
 }  // namespace hgrid::detail
