@@ -1,7 +1,8 @@
 // hgridlab against its peers: the HGrid vs the single-level linked
 // cell, CGAL box_intersection_d, Embree's BVH self-collision (rtcCollide),
 // Bullet's dynamic AABB tree broadphase (btDbvtBroadphase) and LAMMPS
-// `neighbor multi` / `bin`, on the figure-11 packing (3D, periodic,
+// `neighbor multi` / `bin`, and MercuryDPM's HGrid (bench/mercurydpm/peer.cpp,
+// given a MercuryDPM build), on the figure-11 packing (3D, periodic,
 // alpha = -3, omega = 100, nu = 0.6, excluded volume). Every tool must find
 // the same number of pairs (distance < r_i + r_j); a disagreement exits with
 // status 1. --threads N gives hgridlab and Embree N threads and runs LAMMPS
@@ -17,6 +18,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <unistd.h>
 #include <memory>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -36,6 +38,8 @@
 #include "hgridlab/packing/packing_sizes.hpp"
 #include "hgridlab/io/provenance.hpp"
 #include "hgridlab/io/packing_cache.hpp"
+#include "hgridlab/io/viewer_files.hpp"
+#include "hgridlab/packing/grid_placement.hpp"
 
 namespace {
 
@@ -46,6 +50,7 @@ using Clock = std::chrono::steady_clock;
 struct Options {
   PackingSpec spec;
   std::string placement = "excluded", boundary = "periodic", cache = "results/packings", work, csv, scan = "auto";
+  std::string mercurydpm;  // the mercurydpm_peer driver (bench/mercurydpm); empty: $MERCURYDPM_BUILD's, if built
   int repeats = 3, builds = 5, bin_builds = 1, lammps_reruns = 2, threads = 1;
   bool as_json = false, no_cgal = false, no_embree = false, no_bullet = false, no_lammps = false, no_bin = false, linked_cell = false, no_linked_cell = false;
 };
@@ -220,6 +225,31 @@ json run_lammps_tools(const Options& o, const Packing& p, const std::string& lmp
   return out;
 }
 
+/// The driver of MercuryDPM's HGrid (bench/mercurydpm/peer.cpp): --mercurydpm,
+/// else $MERCURYDPM_BUILD/drivers/mercurydpm_peer when it exists; "" otherwise.
+std::string mercurydpm_driver(const Options& o) {
+  if (!o.mercurydpm.empty()) return o.mercurydpm;
+  const char* b = std::getenv("MERCURYDPM_BUILD");
+  if (!b || !*b) return "";
+  const std::string path = std::string(b) + "/drivers/mercurydpm_peer";
+  return std::filesystem::exists(path) ? path : "";
+}
+
+/// One run of the driver on FILE.xyz: its JSON (one object on stdout).
+json run_mercurydpm(const std::string& driver, const std::string& xyz, int d, const std::string& sizes,
+                    const std::string& boundary, int repeats) {
+  const std::string cmd = "'" + driver + "' '" + xyz + "' " + std::to_string(d) + " " + sizes + " " + boundary + " " +
+                          std::to_string(repeats);
+  std::FILE* pipe = ::popen(cmd.c_str(), "r");
+  if (!pipe) throw std::runtime_error("cannot run " + driver);
+  std::string out;
+  char buf[4096];
+  for (std::size_t k; (k = std::fread(buf, 1, sizeof buf, pipe)) > 0;) out.append(buf, k);
+  const int rc = ::pclose(pipe);
+  if (rc != 0) throw std::runtime_error(driver + " failed (" + cmd + ")");
+  return json::parse(out);
+}
+
 int run(Options o) {
   o.spec.placement = parse_placement(o.placement);
   o.spec.boundary = parse_boundary(o.boundary);
@@ -367,6 +397,62 @@ int run(Options o) {
     j["lammps_skipped"] = o.no_lammps ? "--no-lammps" : "lmp not on PATH (apt-get install lammps)";
     std::cerr << "peers: LAMMPS skipped: " << j["lammps_skipped"].get<std::string>() << "\n";
   }
+  // MercuryDPM's HGrid (the paper's authors' code): with hgridlab's sizes
+  // and with its own default, on the packing's boundary (periodic: its
+  // ghosts, as its simulations make them every step); and the same centres
+  // in an open box (no ghosts) beside hgridlab's grid of that box.
+  std::map<std::string, std::pair<double, std::uint64_t>> open_box;  // name -> (seconds, pairs)
+  if (const std::string driver = mercurydpm_driver(o); !driver.empty()) {
+    // The packing for the driver: a temporary extended XYZ file, removed after.
+    const std::string xyz = (std::filesystem::temp_directory_path() /
+                             ("hgridlab-peers-mercurydpm-" + std::to_string(::getpid()) + ".xyz")).string();
+    write_extended_xyz(xyz, p, place_in_grid(p, GridParams{sizes, Search::top_down}));
+    struct Remove {
+      std::string path;
+      ~Remove() { std::filesystem::remove(path); }
+    } remove{xyz};
+    std::string given;
+    for (double v : sizes) given += (given.empty() ? "" : ",") + format_number(v);
+    const std::string own = p.boundary == Boundary::periodic ? "periodic" : "open";
+    try {
+      const json a = run_mercurydpm(driver, xyz, p.d, given, own, o.repeats);
+      take_sample();
+      const json b = run_mercurydpm(driver, xyz, p.d, "default", own, o.repeats);
+      take_sample();
+      j["mercurydpm_given_sizes_run"] = a;
+      j["mercurydpm_default_run"] = b;
+      secs["mercurydpm"] = a["seconds_per_build"], pairs["mercurydpm"] = a["pairs"];
+      secs["mercurydpm_default"] = b["seconds_per_build"], pairs["mercurydpm_default"] = b["pairs"];
+      if (own == "periodic") {
+        const json c = run_mercurydpm(driver, xyz, p.d, given, "open", o.repeats);
+        j["mercurydpm_open_box_run"] = c;
+        open_box["mercurydpm"] = {c["seconds_per_build"], c["pairs"]};
+        Packing q = p;
+        q.boundary = Boundary::walls;
+        dispatch(q.d, Boundary::walls, [&](auto dim, auto) {
+          constexpr int D = decltype(dim)::value;
+          const auto sp = q.spheres<D>();
+          HGrid<D, Boundary::walls> g(sp, q.extent<D>(), GridParams{sizes, Search::top_down});
+          open_box["hgrid"] = best_of(o.repeats, [&] {
+            g.rebuild(sp);
+            std::uint64_t k = 0;
+            g.template query<Search::top_down, Uncounted>([&k](std::uint32_t, std::uint32_t) { ++k; });
+            return k;
+          });
+        });
+        j["hgrid_open_box"] = tool(open_box["hgrid"].first, open_box["hgrid"].second, n);
+        j["ratio_open_box_vs_mercurydpm"] = open_box["mercurydpm"].first / open_box["hgrid"].first;
+        take_sample();
+      }
+      j["mercurydpm_driver"] = driver;
+    } catch (const std::exception& e) {
+      j["mercurydpm_error"] = e.what();
+      std::cerr << "peers: error: MercuryDPM: " << e.what() << "\n";
+    }
+  } else {
+    j["mercurydpm_skipped"] = "no MercuryDPM build (bench/mercurydpm/build.sh, then MERCURYDPM_BUILD or --mercurydpm)";
+    std::cerr << "peers: MercuryDPM skipped: " << j["mercurydpm_skipped"].get<std::string>() << "\n";
+  }
   take_sample();
   secs["hgrid"] = *std::min_element(samples.begin(), samples.end());
   j["hgrid_samples_seconds_per_build"] = samples;
@@ -396,8 +482,10 @@ int run(Options o) {
     if (pairs[name] != pairs["hgrid"]) agree = false;
     if (name != "hgrid") j["ratio_vs_" + name] = s / secs["hgrid"];
   }
-  if (j.contains("hgrid_new_grid_error") || j.contains("lammps_multi_pairs_error") || j.contains("embree_error"))
+  if (j.contains("hgrid_new_grid_error") || j.contains("lammps_multi_pairs_error") || j.contains("embree_error") ||
+      j.contains("mercurydpm_error"))
     agree = false;
+  if (!open_box.empty() && open_box["hgrid"].second != open_box["mercurydpm"].second) agree = false;
   j["pairs_agree"] = agree;
   std::FILE* t = o.as_json ? stderr : stdout;
   std::fprintf(t, "n = %zu, nu = %g, %s, %s, load average %.2f; time per build (per particle), pairs, tool time / hgrid time\n",
@@ -456,6 +544,9 @@ int main(int argc, char** argv) {
   app.add_option("--scan", o.scan, "LAMMPS multi class scan: auto|full|small")->default_val("auto");
   app.add_option("--csv", o.csv, "append one row per tool to this CSV");
   app.add_flag("--json", o.as_json, "JSON on stdout (the table goes to stderr)");
+  app.add_option("--mercurydpm", o.mercurydpm,
+                 "MercuryDPM's HGrid: the mercurydpm_peer driver (default: $MERCURYDPM_BUILD/drivers/mercurydpm_peer "
+                 "when built by bench/mercurydpm/build.sh; else skipped)");
   app.add_flag("--no-cgal", o.no_cgal, "skip CGAL");
   app.add_flag("--no-embree", o.no_embree, "skip Embree");
   app.add_flag("--no-bullet", o.no_bullet, "skip Bullet");

@@ -19,7 +19,14 @@ set title sprintf('hgridlab vs peers: {/Symbol a} = -3, {/Symbol w} = 100, d = 3
 if (!exists("tools")) tools = "lammps_multi lammps_bin cgal embree bullet"
 # One tool (and placement) at a time, so that its points are joined by lines.
 rows(t) = sprintf("< awk -F, 'NR == 1 || ($4 == \"%s\" && $3 == \"%s\")' '%s'", t, placement, in)
+# in2 (plots/peers.sh): MercuryDPM's HGrid, from a run of its own (ratios to
+# that run's hgridlab): with hgridlab's sizes and with its default grid.
+if (!exists("in2")) in2 = ''
+mtools = "mercurydpm mercurydpm_default"
+mrows(t) = sprintf("< awk -F, 'NR == 1 || ($4 == \"%s\" && $3 == \"%s\")' '%s'", t, placement, in2)
 plot for [i=1:words(tools)] rows(word(tools,i)) using "nu":"ratio_vs_hgrid" \
        with linespoints lw 2 pt 7 lc i title word(tools,i) noenhanced, \
+     for [i=1:(in2 eq '' ? 0 : words(mtools))] mrows(word(mtools,i)) using "nu":"ratio_vs_hgrid" \
+       with linespoints lw 2 pt 5 lc (words(tools) + i) title word(mtools,i).' (periodic: its ghosts)' noenhanced, \
      10 with lines lw 2 lc rgb 'gray30' dt 4 title 'target for LAMMPS multi (10x)', \
      1 with lines lc rgb 'black' dt 2 title 'hgridlab'

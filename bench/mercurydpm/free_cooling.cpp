@@ -35,6 +35,7 @@
 #include "Particles/SphericalParticle.h"
 #include "Species/LinearViscoelasticSpecies.h"
 #include "Walls/InfiniteWall.h"
+#include "xyz_input.hpp"
 
 namespace {
 
@@ -50,31 +51,12 @@ struct Disc {
   std::exit(2);
 }
 
-/// The discs and the square box of an extended-XYZ file written by
-/// `hgrid export --xyz` (Lattice="Lx 0 0 0 Ly 0 ...", columns species x y z radius ...).
+/// The discs and the box of an extended-XYZ file written by `hgrid export --xyz`.
 std::vector<Disc> read_xyz(const std::string& path, double& lx, double& ly) {
-  std::ifstream in(path);
-  if (!in) fail("cannot read " + path);
-  std::size_t n = 0;
-  std::string line;
-  if (!std::getline(in, line) || !(std::istringstream(line) >> n) || n == 0) fail(path + ": no particle count");
-  std::getline(in, line);
-  const auto at = line.find("Lattice=\"");
-  if (at == std::string::npos) fail(path + ": no Lattice");
-  double l[9];
-  std::istringstream lat(line.substr(at + 9));
-  for (double& v : l)
-    if (!(lat >> v)) fail(path + ": bad Lattice");
-  lx = l[0], ly = l[4];
-  std::vector<Disc> out;
-  for (std::string s; out.size() < n && std::getline(in, line);) {
-    std::istringstream row(line);
-    Disc d;
-    double z;
-    if (!(row >> s >> d.x >> d.y >> z >> d.r)) fail(path + ": bad particle line");
-    out.push_back(d);
-  }
-  if (out.size() != n) fail(path + ": fewer particles than its count");
+  const hgridlab_mercurydpm::XyzInput in = hgridlab_mercurydpm::read_xyz_input(path, 2);
+  lx = in.L[0], ly = in.L[1];
+  std::vector<Disc> out(in.r.size());
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = Disc{in.x[2 * i], in.x[2 * i + 1], in.r[i]};
   return out;
 }
 
