@@ -155,6 +155,7 @@ TEST_F(TiltedFiles, ToolSearchesAndRefuses) {
   ASSERT_EQ(c.status, 0) << c.err;
   EXPECT_NE(c.out.find("\"tilt_inflation\""), std::string::npos);
   EXPECT_NE(c.out.find("\"contacts\": " + std::to_string(sorted_lines(b.out).size())), std::string::npos);
+  EXPECT_EQ(hgrid_run("count " + path("p.h5") + " --cells optimal --balance 2,8").status, 0);  // the mapped grid's pieces
   // The decomposed search cuts orthogonal bricks: refused, one line, exit 2.
   const Result dcmp = hgrid_run("count " + path("p.h5") + " --decompose --sizes 4");
   EXPECT_EQ(dcmp.status, 2);

@@ -121,11 +121,13 @@ void add_predicted_seconds(const Packing& p, const MeasureOptions& o, Measuremen
   m.time_model = o.time_model_source;
   const Empirical dist(p.radii);
   const ModelParams mp{p.d, m.nu_achieved, o.K, m.search};
-  const PredictedSeconds e =
-      predict_seconds(*o.time_model, expected_time_terms(dist, mp, m.sizes, static_cast<double>(m.n)));
   const PredictedSeconds c = predict_seconds(*o.time_model, counted_time_terms(m.counts, m.build_work));
-  m.predicted_seconds_build_one_thread = e.build;
-  m.predicted_seconds_query_one_thread = e.query;
+  if (!p.tilted()) {  // the expected terms are the orthogonal grid's; a tilted box has its counts only
+    const PredictedSeconds e =
+        predict_seconds(*o.time_model, expected_time_terms(dist, mp, m.sizes, static_cast<double>(m.n)));
+    m.predicted_seconds_build_one_thread = e.build;
+    m.predicted_seconds_query_one_thread = e.query;
+  }
   m.predicted_seconds_build_one_thread_from_counts = c.build;
   m.predicted_seconds_query_one_thread_from_counts = c.query;
 }
