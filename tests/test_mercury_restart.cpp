@@ -154,6 +154,10 @@ TEST(MercuryRestart, RefusalsNameTheFieldAndLine) {
                              kTwo))
                 .find("Boundaries"),
             std::string::npos);
+  // One rank's file of an MPI run.
+  std::string mpi = restart("1.0", "Walls 0\n", "Boundaries 0\n", kTwo);
+  mpi.replace(mpi.find("random  0 1 2 3"), 15, "random  0 1 2 3 numberOfProcessors 4 numberOfDomains 2 2 1");
+  EXPECT_NE(field_of(mpi).find("numberOfProcessors"), std::string::npos);
   // A particle without radius.
   std::string nor = restart("1.0", "Walls 0\n", "Boundaries 0\n", kTwo);
   nor.replace(nor.find("radius 0.5"), 10, "");

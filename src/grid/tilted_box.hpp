@@ -3,7 +3,7 @@
 // c = (xz, yz, lz), i.e. x = H s with H upper triangular and s the fractional
 // coordinates; in 2D a = (lx, 0), b = (xy, ly). A Lees-Edwards box (an
 // orthogonal box whose images across the y faces are shifted along x by an
-// offset) is the same lattice with xy = the offset reduced into [-lx/2, lx/2).
+// offset) is the same lattice with xy = the offset less a multiple of lx, |xy| <= lx/2.
 // Its grid is grid/tilted.hpp.
 #pragma once
 #include <algorithm>
@@ -19,6 +19,10 @@ namespace hgrid {
 /// How far past half an edge a tilt may lie and still be at LAMMPS's limit
 /// (a box written at the limit reads back a few ulps beyond it).
 inline constexpr double kTiltLimitRelTol = 1e-12;
+/// How much the inflation c is raised over the computed largest singular
+/// value, so that rounding (~1e-15) cannot make a mapped sphere smaller than
+/// the ellipsoid it stands for (a larger sphere only adds candidates).
+inline constexpr double kInflationRelMargin = 1e-9;
 
 /// A periodic box with tilts (LAMMPS's triclinic box, origin at 0).
 template <int D>
@@ -96,8 +100,7 @@ struct TiltedBox {
   }
 
   /// c: the largest singular value of A, the most a length grows by the map
-  /// (exactly 1 at zero tilt; otherwise raised by 1e-9 so that rounding
-  /// cannot make a mapped sphere smaller than the ellipsoid it stands for).
+  /// (exactly 1 at zero tilt; otherwise raised by kInflationRelMargin).
   double inflation() const {
     if (!tilted()) return 1.0;
     // A's columns are A e_a; the largest eigenvalue of A^T A by Jacobi rotations.
@@ -137,7 +140,7 @@ struct TiltedBox {
     }
     double lmax = 0;
     for (int k = 0; k < D; ++k) lmax = std::max(lmax, M[k][k]);
-    return std::sqrt(lmax) * (1 + 1e-9);
+    return std::sqrt(lmax) * (1 + kInflationRelMargin);
   }
 
   /// LAMMPS's limit on a tilt: |xy| <= lx/2, |xz| <= lx/2, |yz| <= ly/2

@@ -123,6 +123,9 @@ ParticleSet parse_mercury_restart(std::string_view text, const std::string& name
       const double v = o.get("systemDimensions", 1, "systemDimensions", at)[0];
       if (v != 2 && v != 3) throw InputError("systemDimensions", "must be 2 or 3 at " + at.where());
       d = static_cast<int>(v);
+      if (o.values.count("numberOfProcessors") && o.get("numberOfProcessors", 1, "numberOfProcessors", at)[0] > 1)
+        throw InputError("numberOfProcessors", "an MPI run's restart file holds one rank's particles (at " +
+                                                   at.where() + "); hgridlab reads a serial run's");
     } else if (const auto w = section(line, "Walls", at)) {
       for (std::size_t k = 0; k < *w; ++k) {
         if (!at.next(line)) throw InputError("Walls", name + " ends inside its Walls section");
