@@ -154,6 +154,9 @@ TEST(MercuryRestart, RefusalsNameTheFieldAndLine) {
                              kTwo))
                 .find("Boundaries"),
             std::string::npos);
+  // No Particles section.
+  std::string none = restart("1.0", "Walls 0\n", "Boundaries 0\n", "");
+  EXPECT_NE(field_of(none).find("Particles | "), std::string::npos) << field_of(none);
   // One rank's file of an MPI run.
   std::string mpi = restart("1.0", "Walls 0\n", "Boundaries 0\n", kTwo);
   mpi.replace(mpi.find("random  0 1 2 3"), 15, "random  0 1 2 3 numberOfProcessors 4 numberOfDomains 2 2 1");

@@ -99,6 +99,7 @@ ParticleSet parse_mercury_restart(std::string_view text, const std::string& name
   std::array<double, 3> dmin{}, dmax{};
   bool domain = false;
   int d = 0;
+  bool particles = false;  // the Particles section was read
   std::array<std::optional<Period>, 3> period;
   std::array<std::array<std::optional<double>, 2>, 3> wall;  // InfiniteWall planes: [axis][-e, +e]
   const auto periodic = [&](int a, double lo, double hi, std::array<double, 3> vec, const std::string& what) {
@@ -199,10 +200,11 @@ ParticleSet parse_mercury_restart(std::string_view text, const std::string& name
         }
         s.radii.push_back(r);
       }
+      particles = true;
       break;  // interactions and the grid's line follow: not needed
     }
   }
-  if (s.radii.empty() && d == 0) throw InputError("Particles", "no 'Particles' section in " + name);
+  if (!particles) throw InputError("Particles", "no 'Particles' section in " + name);
   s.d = d;
   // The box: periodic where a boundary says, else between the walls, else the domain.
   int n_periodic = 0;
