@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 #include <utility>
 
@@ -12,6 +13,7 @@
 #include "hgridlab/io/particle_file.hpp"
 #include "hgridlab/model/cell_sizes.hpp"
 #include "hgridlab/model/distribution.hpp"
+#include "hgridlab/model/model.hpp"
 #include "hgridlab/packing/packing_model.hpp"
 
 namespace hgrid {
@@ -62,29 +64,28 @@ void time_uncounted(MakeGrid make, const GridParams& g, const TimingOptions& opt
 
 /// A tilted box's grid searches the mapped packing (grid/tilted.hpp): its
 /// spheres c times larger in the orthogonal box of the same lengths, with
-/// cell sizes c times larger; the random-centres model of that packing is
-/// the model of the work (docs/MODEL.md section 12). The excluded-volume
-/// model describes spheres, not the mapped ellipsoids: not computed.
+/// cell sizes c times larger; the random-centres model of that packing
+/// (packing fraction c^d nu, above 1 for dense sheared packings: random
+/// centres, so allowed) is the model of the work (docs/MODEL.md section 12).
+/// The excluded-volume model describes spheres, not the mapped ellipsoids:
+/// not computed.
 void add_tilted_model(const Packing& p, const MeasureOptions& o, Measurement& m) {
-  Packing mapped;
-  mapped.d = p.d;
-  mapped.box = p.box;
-  mapped.boundary = Boundary::periodic;
-  mapped.radii = p.radii;
-  for (auto& r : mapped.radii) r *= m.tilt_inflation;
-  mapped.positions.assign(p.positions.size(), 0.0);  // the random-centres model reads radii, box and sizes only
+  const double c = m.tilt_inflation;
+  std::vector<double> radii = p.radii;
+  for (auto& r : radii) r *= c;
+  const Empirical dist(radii);
   std::vector<double> sizes = sizes_for_grid(m.sizes, 2 * Empirical(p.radii).r_max());
-  for (auto& s : sizes) s *= m.tilt_inflation;
+  for (auto& s : sizes) s *= c;
   if (o.excluded_model) m.model_excluded_skipped = "a tilted box (the model is for spheres in the grid; see docs/MODEL.md section 12)";
+  ModelParams mp{p.d, std::pow(c, p.d) * p.packing_fraction(), o.K, m.search};
+  mp.overfull = true;
   try {
-    const PackingModels pm = model_for_packing(mapped, sizes, m.search, o.K, false, false, o.wall_pairs);
-    m.model_T_over_N = pm.random.T_over_N;
-    m.model_T_cd_over_N = pm.random.T_cd_over_N;
-    m.model_T_ca_over_N = pm.random.T_ca_over_N;
-    for (const double v : pm.random.T_cd_pair) m.model_checks_by_level.push_back(static_cast<double>(m.n) * v);
+    const ModelResult r = evaluate_model(dist, mp, sizes);
+    m.model_T_over_N = r.T_over_N;
+    m.model_T_cd_over_N = r.T_cd_over_N;
+    m.model_T_ca_over_N = r.T_ca_over_N;
+    for (const double v : r.T_cd_pair) m.model_checks_by_level.push_back(static_cast<double>(m.n) * v);
   } catch (const InputError& e) {
-    // c^d nu > 1: the mapped spheres fill more than the box; the model's
-    // domain (nu <= 1) does not reach it.
     m.model_skipped = std::string("the tilted box's mapped spheres (grid/tilted.hpp): ") + e.what();
   }
 }

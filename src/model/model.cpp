@@ -30,7 +30,8 @@ void validate_sizes(const Distribution& dist, const std::vector<double>& s) {
 
 void validate(const ModelParams& p) {
   if (p.d != 2 && p.d != 3) throw InputError("d", "must be 2 or 3 (got " + std::to_string(p.d) + ")");
-  if (!(p.nu > 0.0 && p.nu <= 1.0)) throw InputError("nu", "packing fraction must be in (0, 1] (got " + format_number(p.nu) + ")");
+  if (!(p.nu > 0.0 && (p.nu <= 1.0 || (p.overfull && std::isfinite(p.nu)))))
+    throw InputError("nu", "packing fraction must be in (0, 1] (got " + format_number(p.nu) + ")");
   if (!std::isfinite(p.K) || !(p.K >= 0.0))
     throw InputError("K", "must be finite and >= 0 (got " + format_number(p.K) + ")");
 }

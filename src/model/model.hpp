@@ -9,12 +9,17 @@ namespace hgrid {
 
 struct ModelParams {
   int d = 3;          // dimension, 2 or 3
-  double nu = 0.7;    // packing fraction, > 0
+  double nu = 0.7;    // packing fraction, in (0, 1] (unless overfull)
   double K = 0.2;     // cell-access time / overlap-test time, >= 0
   Search search = Search::top_down;
+  /// Random centres whose spheres fill more than the box (nu > 1 allowed):
+  /// the model of a tilted box's grid, which searches its spheres enlarged
+  /// (docs/MODEL.md section 12). Never set from a user's input.
+  bool overfull = false;
 };
 
-/// Throws InputError naming the field for d not in {2,3}, nu <= 0, K < 0, NaN.
+/// Throws InputError naming the field for d not in {2,3}, nu not in (0, 1]
+/// (any nu > 0 when overfull), K < 0, NaN.
 void validate(const ModelParams& p);
 
 /// Everything per particle (divided by N). Per-level vectors have L entries.

@@ -14,22 +14,37 @@ namespace hgrid {
 
 namespace {
 
+/// The sizes the request asks for, for radii `dist` at `mp`, fitted to the
+/// periodic box of `fit` (whose radii they are).
+std::vector<double> requested_sizes(const Distribution& dist, const ModelParams& mp, const Packing& fit,
+                                    const SizeRequest& r) {
+  if (r.time_model) {
+    if (r.method != CellMethod::optimal) throw InputError("cost", "'time' applies to --cells optimal only");
+    if (r.excluded_model) throw InputError("cost", "'time' and --excluded-sizes do not combine");
+    if (r.levels) throw InputError("cost", "'time' chooses the number of levels itself; drop --levels");
+    return time_optimal_sizes(dist, mp, *r.time_model, static_cast<double>(fit.size())).sizes;
+  }
+  std::vector<double> sizes = choose_cell_sizes(dist, mp, r.method, r.levels, r.q).sizes;
+  if (r.excluded_model) {
+    if (r.method != CellMethod::optimal) throw InputError("excluded-sizes", "applies to --cells optimal only");
+    sizes = refine_sizes_excluded_reported(dist, mp, sizes).sizes;
+  }
+  return merge_fitted_levels(sizes_for_grid(sizes, 2 * dist.r_max()), fit);
+}
+
 /// A tilted box's grid searches the mapped packing: radii and sizes c times
-/// larger in a box of the same volume (grid/tilted.hpp). Its sizes are the
-/// mapped packing's, over c; where c^d nu > 1 lies beyond the model's
-/// packing fractions, the sizes of the packing as it is.
+/// larger in a box of the same lengths (grid/tilted.hpp), random centres at
+/// packing fraction c^d nu (above 1 for dense sheared packings). Its sizes
+/// are the mapped packing's, over c.
 std::vector<double> tilted_model_sizes(const Packing& p, const SizeRequest& r, Search search, double K) {
   if (r.excluded_model) throw InputError("excluded-sizes", "a tilted box's grid searches mapped ellipsoids, not hard spheres");
   const double c = p.d == 2 ? p.tilted_box<2>().inflation() : p.tilted_box<3>().inflation();
   Packing m = p;
   m.tilt = {};
   for (auto& v : m.radii) v *= c;
-  if (!(m.packing_fraction() <= 1.0)) {
-    m = p;
-    m.tilt = {};
-    return model_sizes(m, r, search, K);
-  }
-  std::vector<double> sizes = model_sizes(m, r, search, K);
+  ModelParams mp{p.d, m.packing_fraction(), K, search};
+  mp.overfull = true;
+  std::vector<double> sizes = requested_sizes(Empirical(m.radii), mp, m, r);
   for (auto& v : sizes) v /= c;
   return sizes;
 }
@@ -39,20 +54,7 @@ std::vector<double> tilted_model_sizes(const Packing& p, const SizeRequest& r, S
 std::vector<double> model_sizes(const Packing& p, const SizeRequest& r, Search search, double K) {
   if (p.size() == 0) throw InputError("cells", "the packing has no particles to fit sizes to");
   if (p.tilted()) return tilted_model_sizes(p, r, search, K);
-  const Empirical dist(p.radii);
-  const ModelParams mp{p.d, p.packing_fraction(), K, search};
-  if (r.time_model) {
-    if (r.method != CellMethod::optimal) throw InputError("cost", "'time' applies to --cells optimal only");
-    if (r.excluded_model) throw InputError("cost", "'time' and --excluded-sizes do not combine");
-    if (r.levels) throw InputError("cost", "'time' chooses the number of levels itself; drop --levels");
-    return time_optimal_sizes(dist, mp, *r.time_model, static_cast<double>(p.size())).sizes;
-  }
-  std::vector<double> sizes = choose_cell_sizes(dist, mp, r.method, r.levels, r.q).sizes;
-  if (r.excluded_model) {
-    if (r.method != CellMethod::optimal) throw InputError("excluded-sizes", "applies to --cells optimal only");
-    sizes = refine_sizes_excluded_reported(dist, mp, sizes).sizes;
-  }
-  return merge_fitted_levels(sizes_for_grid(sizes, 2 * dist.r_max()), p);
+  return requested_sizes(Empirical(p.radii), ModelParams{p.d, p.packing_fraction(), K, search}, p, r);
 }
 
 std::vector<double> merge_fitted_levels(std::vector<double> sizes, const Packing& p) {
