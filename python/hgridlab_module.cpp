@@ -155,8 +155,7 @@ py::dict read_particle_file(const std::string& path, std::optional<std::int64_t>
     out["positions"] = py::none();
   }
   out["box"] = s.box ? py::cast(std::vector<double>(s.box->begin(), s.box->begin() + s.d)) : py::none();
-  const bool tilted = s.tilt[0] != 0 || s.tilt[1] != 0 || s.tilt[2] != 0;
-  out["tilt"] = tilted ? py::cast(std::vector<double>(s.tilt.begin(), s.tilt.begin() + (s.d == 2 ? 1 : 3))) : py::none();
+  out["tilt"] = s.tilted() ? py::cast(tilt_values(s.tilt, s.d)) : py::none();
   out["boundary"] = s.mixed_boundary ? py::cast("mixed") : s.boundary ? py::cast(to_string(*s.boundary)) : py::none();
   out["nu"] = s.box && s.d > 0 ? py::cast(s.packing_fraction()) : py::none();
   return out;

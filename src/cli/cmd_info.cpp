@@ -41,7 +41,7 @@ void run_info(const InfoOptions& o) {
   j["n"] = p.size();
   j["d"] = p.d;
   j["box"] = std::vector<double>(p.box.begin(), p.box.begin() + p.d);
-  j["tilt"] = p.tilted() ? nlohmann::json(std::vector<double>(p.tilt.begin(), p.tilt.begin() + (p.d == 2 ? 1 : 3)))
+  j["tilt"] = p.tilted() ? nlohmann::json(tilt_values(p.tilt, p.d))
                          : nlohmann::json();
   j["boundary"] = to_string(p.boundary);
   j["nu"] = q.nu;

@@ -98,8 +98,7 @@ void print_json(const RecommendOptions& o, const ParticleSet& s, const FileInput
   j["nu"] = in.nu;
   j["nu_source"] = in.nu_from_box ? "box" : "given";
   j["box"] = s.box ? nlohmann::json(std::vector<double>(s.box->begin(), s.box->begin() + in.d)) : nlohmann::json();
-  const bool tilted = s.tilt[0] != 0 || s.tilt[1] != 0 || s.tilt[2] != 0;
-  j["tilt"] = tilted ? nlohmann::json(std::vector<double>(s.tilt.begin(), s.tilt.begin() + (in.d == 2 ? 1 : 3)))
+  j["tilt"] = s.tilted() ? nlohmann::json(tilt_values(s.tilt, in.d))
                      : nlohmann::json();
   j["boundary"] = boundary_description(s);
   std::cout << j.dump(2) << "\n";

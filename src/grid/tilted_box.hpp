@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "hgridlab/base/error.hpp"
 #include "hgridlab/grid/geometry.hpp"
@@ -23,6 +24,12 @@ inline constexpr double kTiltLimitRelTol = 1e-12;
 /// value, so that rounding (~1e-15) cannot make a mapped sphere smaller than
 /// the ellipsoid it stands for (a larger sphere only adds candidates).
 inline constexpr double kInflationRelMargin = 1e-9;
+
+/// The tilts a box of dimension d has: {xy} (2D) or {xy, xz, yz} (3D), as
+/// files and reports list them.
+inline std::vector<double> tilt_values(const std::array<double, 3>& tilt, int d) {
+  return std::vector<double>(tilt.begin(), tilt.begin() + (d == 2 ? 1 : 3));
+}
 
 /// A periodic box with tilts (LAMMPS's triclinic box, origin at 0).
 template <int D>

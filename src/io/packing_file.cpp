@@ -313,7 +313,7 @@ void write_packing(const std::string& path, const Packing& p) {
     detail::h5_write_attr(root.id, "box", std::vector<double>(p.box.begin(), p.box.begin() + p.d));
     detail::h5_write_attr(root.id, "boundary", std::string(to_string(p.boundary)));
     if (p.tilted())
-      detail::h5_write_attr(root.id, "tilt", std::vector<double>(p.tilt.begin(), p.tilt.begin() + (p.d == 2 ? 1 : 3)));
+      detail::h5_write_attr(root.id, "tilt", tilt_values(p.tilt, p.d));
     for (const auto& [k, v] : p.num_attrs) detail::h5_write_attr(root.id, k, std::vector<double>{v});
     for (const auto& [k, v] : p.str_attrs) detail::h5_write_attr(root.id, k, v);
     for (const auto& [k, v] : provenance_fields())

@@ -38,6 +38,7 @@ struct ParticleSet {
   std::size_t frame = 0, frames = 1;  // the snapshot read, of how many the file holds (dumps, MercuryDPM .data)
   std::size_t size() const { return radii.size(); }
   bool has_positions() const { return !positions.empty(); }
+  bool tilted() const { return tilt[0] != 0 || tilt[1] != 0 || tilt[2] != 0; }
   /// Total particle volume over the box's (needs d and a box).
   double packing_fraction() const;
 };

@@ -179,7 +179,7 @@ Measurement measure(const Packing& p, const GridParams& g, const MeasureOptions&
     constexpr Boundary B = decltype(bnd)::value;
     const auto spheres = p.spheres<D>();
     if (p.tilted()) {
-      m.tilt.assign(p.tilt.begin(), p.tilt.begin() + (D == 2 ? 1 : 3));
+      m.tilt = tilt_values(p.tilt, D);
       m.tilt_inflation = p.tilted_box<D>().inflation();
       on_grid([&] { return TiltedHGrid<D>(spheres, p.tilted_box<D>(), g); });
     } else {

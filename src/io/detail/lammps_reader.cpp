@@ -241,8 +241,7 @@ ParticleSet parse_lammps_dump(std::string_view text, const std::string& name, st
         throw InputError("ATOMS", "no radius or diameter column at " + at.where() + " (dump ... radius or diameter)");
       const int dims = c.dims();
       if (dims < 0) throw InputError("ATOMS", "coordinates need x and y (and z in 3D) at " + at.where());
-      const bool tilted_box = s.tilt[0] != 0 || s.tilt[1] != 0 || s.tilt[2] != 0;
-      if (tilted_box && c.any_scaled() && !(c.scaled[0] && c.scaled[1] && (dims == 2 || c.scaled[2])))
+      if (s.tilted() && c.any_scaled() && !(c.scaled[0] && c.scaled[1] && (dims == 2 || c.scaled[2])))
         throw InputError("ATOMS", "a tilted box's dump with scaled and unscaled coordinates mixed at " + at.where() +
                                       " (dump xs ys zs, or x y z)");
       reserve(s, *n, dims);
