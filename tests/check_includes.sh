@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # The include order of the stages: a file below src/<stage>/ includes only
-# from its own stage and the stages before it (base, grid, model, packing,
-# io, measure, dpm, calibration, advice, scenes, mpi); another stage's
+# from its own stage and the stages before it (base, grid, domain, contacts,
+# model, packing, io, measure, dpm, calibration, advice, scenes, mpi); another stage's
 # detail/ is never included. Usage: check_includes.sh SRC_ROOT
 set -euo pipefail
 root="${1:-.}"
-stages=(base grid model packing io measure dpm calibration advice scenes mpi)
+stages=(base grid domain contacts model packing io measure dpm calibration advice scenes mpi)
 rank() { local i; for i in "${!stages[@]}"; do [ "${stages[$i]}" = "$1" ] && { echo "$i"; return; }; done; echo -1; }
 bad=0
 for d in "$root"/src/*/; do  # every folder of src/ is a stage (or the tool)
@@ -36,7 +36,7 @@ done
 # The tool and the benchmarks use public headers only; tests, benchmarks and
 # the Python module name stage headers hgridlab/STAGE/... too.
 while IFS= read -r -d '' f; do
-  if grep -qE '^[[:space:]]*#[[:space:]]*include[[:space:]]*"(base|grid|model|packing|io|measure|dpm|calibration|advice|scenes|mpi)/' "$f"; then
+  if grep -qE '^[[:space:]]*#[[:space:]]*include[[:space:]]*"(base|grid|domain|contacts|model|packing|io|measure|dpm|calibration|advice|scenes|mpi)/' "$f"; then
     echo "$f: includes a stage's header without hgridlab/"; bad=1
   fi
 done < <(find "$root/tests" "$root/bench" "$root/python" "$root/src/cli" -name '*.[ch]pp' -print0)

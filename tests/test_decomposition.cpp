@@ -1,11 +1,11 @@
-// The decomposed search (grid/decomposition.hpp, grid/decomposed_query.hpp)
+// The decomposed search (domain/decomposition.hpp, domain/decomposed_query.hpp)
 // with every rank simulated in this process, against the O(N^2) brute force:
 // the union of what the ranks report is the serial pair SET, each pair once.
 #include <gtest/gtest.h>
 
 #include <map>
 
-#include "hgridlab/grid/decomposed_query.hpp"
+#include "hgridlab/domain/decomposed_query.hpp"
 #include "support.hpp"
 
 namespace hgrid::test {

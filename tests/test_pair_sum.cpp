@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "hgridlab/grid/pair_sum.hpp"
+#include "hgridlab/contacts/pair_sum.hpp"
 
 namespace hgrid {
 namespace {

@@ -22,7 +22,7 @@
 // bit for bit). The sort is an LSD radix sort of the packed pair keys, timed
 // with the forces, not with the contact detection. On several threads the
 // sort, the forces and the sums run on all of them and still add every
-// particle's contributions in canonical order (grid/pair_sum.hpp), so the
+// particle's contributions in canonical order (contacts/pair_sum.hpp), so the
 // trajectory is also the same for any number of threads.
 #pragma once
 #include <algorithm>
@@ -39,7 +39,7 @@
 #include "hgridlab/dpm/contact_law.hpp"
 #include "hgridlab/dpm/simulation.hpp"
 #include "hgridlab/grid/hgrid.hpp"
-#include "hgridlab/grid/pair_sum.hpp"
+#include "hgridlab/contacts/pair_sum.hpp"
 
 namespace hgrid::dpm {
 

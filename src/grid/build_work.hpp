@@ -2,7 +2,7 @@
 // the time model, docs/MODEL.md section 9): the build moves the particles
 // into coarse buckets (about kCoarseBucket particles each, per level), then
 // radix-sorts the low key bits inside each bucket, 8 bits per pass
-// (grid/detail/hgrid_build.hpp, grid/detail/radix.hpp).
+// (grid/detail/hgrid_build.hpp, base/radix.hpp).
 #pragma once
 #include <algorithm>
 #include <bit>
@@ -21,7 +21,7 @@ struct LevelSortWork {
 /// For a level of `cells` cells in a grid of `n` particles: the build's own
 /// rule (HGrid::build takes its shifts and bucket counts from here).
 inline LevelSortWork level_sort_work(std::uint64_t cells, std::uint64_t n) {
-  constexpr int kBitsPerPass = 8;  // grid/detail/radix.hpp
+  constexpr int kBitsPerPass = 8;  // base/radix.hpp
   const int coarse_bits = static_cast<int>(std::bit_width(n / detail::kCoarseBucket));
   const std::uint64_t last = std::max<std::uint64_t>(cells, 1) - 1;
   const int shift = std::max(0, static_cast<int>(std::bit_width(last)) - coarse_bits);

@@ -65,7 +65,7 @@ class HGrid {
   /// the grid. One thread; the counters are those of the searches, counted
   /// as a Top-Down cross-level search counts its own (a probe's own level
   /// as its diagonal). A decomposed search finds the pairs of its ghosts
-  /// this way (grid/decomposed_query.hpp).
+  /// this way (domain/decomposed_query.hpp).
   template <class Count = Uncounted, class F>
   Counters for_each_overlap_below(std::span<const Sphere<D>> probes, F&& f) const;
 

@@ -9,7 +9,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "hgridlab/grid/decomposed_query.hpp"
+#include "hgridlab/domain/decomposed_query.hpp"
 #include "hgridlab/grid/dispatch.hpp"
 #include "hgridlab/io/packing_file.hpp"
 #include "hgridlab/mpi/comm.hpp"

@@ -1,7 +1,7 @@
 // The decomposed contact search over the ranks of an MPI run: each rank
 // reads its part of a packing file, sends every particle to the rank whose
 // brick holds its centre, sends and receives the level-aware ghosts
-// (grid/decomposition.hpp) and searches its brick with an HGrid; every
+// (domain/decomposition.hpp) and searches its brick with an HGrid; every
 // overlapping pair is reported by exactly one rank. Without MPI (or with one
 // rank) it is the serial search with the same output.
 #pragma once

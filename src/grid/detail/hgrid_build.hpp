@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "hgridlab/grid/detail/parallel.hpp"
-#include "hgridlab/grid/detail/radix.hpp"
+#include "hgridlab/base/parallel.hpp"
+#include "hgridlab/base/radix.hpp"
 
 namespace hgrid {
 

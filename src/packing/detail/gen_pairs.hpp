@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "hgridlab/grid/hgrid.hpp"
-#include "hgridlab/grid/pair_sum.hpp"
+#include "hgridlab/contacts/pair_sum.hpp"
 
 namespace hgrid::detail {
 

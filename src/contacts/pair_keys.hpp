@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "hgridlab/grid/detail/radix.hpp"
+#include "hgridlab/base/radix.hpp"
 
 namespace hgrid::detail {
 

@@ -1,4 +1,4 @@
-// One rank's part of a decomposed contact search (grid/decomposition.hpp):
+// One rank's part of a decomposed contact search (domain/decomposition.hpp):
 // the HGrid of the rank's own particles and its ghosts, filtered so that
 // every overlapping pair is reported by exactly one rank.
 #pragma once
@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "hgridlab/grid/decomposition.hpp"
+#include "hgridlab/domain/decomposition.hpp"
 #include "hgridlab/grid/hgrid.hpp"
 #include "hgridlab/base/threads.hpp"
 
@@ -29,7 +29,7 @@ struct CountOnly {};
 
 /// spheres: the rank's own particles (indices below n_owned), then its
 /// ghosts; `grid` was built from the own ones only; `bricks` and `self` say
-/// who owns what (grid/decomposition.hpp). Calls f(id_i, id_j), id_i < id_j,
+/// who owns what (domain/decomposition.hpp). Calls f(id_i, id_j), id_i < id_j,
 /// for every overlapping pair whose lower particle in the reporting order
 /// (radius, owner rank) is owned here, with ids[k] the global index of
 /// spheres[k] (f(t, id_i, id_j) when it takes a thread index;

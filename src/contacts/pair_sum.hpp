@@ -20,9 +20,9 @@
 #include <exception>
 #include <vector>
 
-#include "hgridlab/grid/detail/parallel.hpp"
-#include "hgridlab/grid/detail/radix.hpp"
-#include "hgridlab/grid/pair_keys.hpp"
+#include "hgridlab/base/parallel.hpp"
+#include "hgridlab/base/radix.hpp"
+#include "hgridlab/contacts/pair_keys.hpp"
 #include "hgridlab/base/threads.hpp"
 
 namespace hgrid {
