@@ -124,13 +124,15 @@ py::dict to_dict(const Measurement& m) {
 
 py::dict count(const DoubleArray& positions, const DoubleArray& radii, const DoubleArray& box, bool periodic,
                const std::optional<std::vector<double>>& sizes, const std::string& search, double K, int threads,
-               bool model, const Tilt& tilt) {
+               bool model, const Tilt& tilt, double excluded_budget) {
+  if (!(excluded_budget >= 0)) throw InputError("excluded_budget", "must be >= 0 (0: no budget)");
   const Packing p = make_packing(positions, radii, box, periodic, tilt);
   GridParams params = grid_params(p, sizes, search);
   params.threads = check_threads(threads);
   MeasureOptions mo;
   mo.K = K;
   mo.model = mo.excluded_model = model;
+  mo.excluded_work_budget = excluded_budget;
   Measurement m;
   {
     py::gil_scoped_release release;
@@ -182,11 +184,12 @@ PYBIND11_MODULE(hgridlab, m) {
         "tilted periodic box's [xy] (2D) or [xy, xz, yz] (3D), LAMMPS's triclinic box (a Lees-Edwards offset is xy).");
   m.def("count", &count, py::arg("positions"), py::arg("radii"), py::arg("box"), py::arg("periodic") = true,
         py::arg("sizes") = py::none(), py::arg("search") = "topdown", py::arg("K") = kPaperK, py::arg("threads") = 0,
-        py::arg("model") = false, py::arg("tilt") = py::none(),
+        py::arg("model") = false, py::arg("tilt") = py::none(), py::arg("excluded_budget") = kDiscWorkPerSecond,
         "The counted search (the same counts for any number of threads) as a dict with the fields of "
         "`hgrid count --json` (docs/MEASUREMENT.md): cell_accesses, narrow_phase_checks, contacts, "
         "particles_per_level, accesses_by_level and checks_by_level (L x L, row-major: level of the particle, level "
-        "searched), sizes (as used), T_over_N, ...; model=True adds the cost models' predictions (model_*).");
+        "searched), sizes (as used), T_over_N, ...; model=True adds the cost models' predictions (model_*); for discs the excluded-volume model within "
+        "excluded_budget multiply-adds (as `hgrid count --excluded-budget`; 0: none).");
   m.def("measurement_fields", [] {
     py::list out;
     for (const MeasurementField& f : measurement_fields())

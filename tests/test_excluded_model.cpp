@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "hgridlab/base/error.hpp"
@@ -247,6 +248,57 @@ TEST(ExcludedModel, RefusesWhatItCannotModel) {
   } catch (const InputError& e) {
     EXPECT_EQ(e.field(), "omega");
   }
+}
+
+// The 2D solution's work budget (ExcludedOptions::disc_work_budget, `hgrid
+// count --excluded-budget`): within it the answer is the unbudgeted one bit for
+// bit; too small to try, refused before any iteration; run out, refused after.
+TEST(ExcludedModel, DiscsWithinTheirWorkBudgetOrRefusedNamingIt) {
+  const PowerLaw d(-3, 10);
+  const std::vector<double> s = {4.0, 8.0, 20.0};
+  const ModelParams p{2, 0.5, 0.2, Search::top_down};
+  ExcludedOptions budget;
+  budget.disc_work_budget = kDiscWorkPerSecond;
+  EXPECT_EQ(evaluate_excluded_model(d, p, s, budget).T_over_N, evaluate_excluded_model(d, p, s).T_over_N);
+  for (const double b : {1e6, 3e8}) {  // ~4e6 per iteration: 0 and 75 iterations of the ~110 it needs
+    budget.disc_work_budget = b;
+    try {
+      evaluate_excluded_model(d, p, s, budget);
+      ADD_FAILURE() << "a budget of " << b << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.field(), "excluded-budget");
+      EXPECT_NE(std::string(e.what()).find(b < 1e7 ? "cannot be tried" : "did not converge within"), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
+TEST(PyNumeric, WorkBudgetRefusesBeforeIteratingOrWhenSpent) {
+  const double eta = 0.6, rho = eta * 4 / std::numbers::pi;
+  detail::PyNumericGrid g = fine_grid(16);
+  g.max_work = 1.0;
+  double per_iteration = 0;
+  try {
+    detail::PyNumeric(2, {rho}, {1.0}, g);
+    ADD_FAILURE() << "one multiply-add accepted";
+  } catch (const detail::PyWorkBudget& b) {
+    EXPECT_TRUE(b.refused_before);
+    EXPECT_EQ(b.affordable_iterations, 0);
+    per_iteration = b.work_per_iteration;
+  }
+  g.max_work = 0;
+  const int needed = detail::PyNumeric(2, {rho}, {1.0}, g).iterations();
+  ASSERT_GT(needed, detail::kPyMinIterations);
+  g.max_work = per_iteration * detail::kPyMinIterations;  // enough to try, too little to finish
+  try {
+    detail::PyNumeric(2, {rho}, {1.0}, g);
+    ADD_FAILURE() << "finished in " << detail::kPyMinIterations << " iterations, needs " << needed;
+  } catch (const detail::PyWorkBudget& b) {
+    EXPECT_FALSE(b.refused_before);
+    EXPECT_EQ(b.affordable_iterations, detail::kPyMinIterations);
+  }
+  g.max_work = per_iteration * needed;  // just enough
+  EXPECT_EQ(detail::PyNumeric(2, {rho}, {1.0}, g).iterations(), needed);
 }
 
 TEST(ExcludedModel, WalledBoxesApproachTheBulk) {

@@ -52,6 +52,8 @@ void run_count(const GridOptions& o, const std::string& K_text, int repeat, bool
   mo.K = K;
   mo.model = mo.excluded_model = mo.model_progress = true;
   mo.wall_pairs = wall_pairs;
+  if (!(o.excluded_budget >= 0)) throw InputError("excluded-budget", "must be >= 0 (0: no budget)");
+  mo.excluded_work_budget = o.excluded_budget;
   if (repeat > 0) mo.timing = TimingOptions{repeat, repeat, 0.0};
   const std::optional<Calibration> cal = stored_calibration();
   if (const TimeModelFit* t = cal ? cal->time_model(p.d) : nullptr) {
@@ -101,6 +103,10 @@ void register_count_commands(CLI::App& app) {
                     "walls, excluded-volume model: layer (no pair excess for centres within the largest radius of a "
                     "wall; docs/MODEL.md section 8) or product (Kirkwood's superposition everywhere)")
         ->default_val("layer");
+    sub->add_option("--excluded-budget", o->excluded_budget,
+                    "2D: the most multiply-adds the excluded-volume model's numerical solution may take (6e9: about "
+                    "a second on one core; 0: no budget, up to a minute at omega = 50)")
+        ->default_val(kDiscWorkPerSecond);
     sub->add_flag("--json", *js, "print one JSON object (its fields: `hgrid fields`, docs/MEASUREMENT.md)");
     sub->callback([o, K, repeat, js, balance] { run_count(*o, *K, *repeat, *js, *balance); });
   }

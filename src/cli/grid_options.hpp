@@ -6,6 +6,7 @@
 
 #include "common.hpp"
 #include "hgridlab/grid/params.hpp"
+#include "hgridlab/model/excluded.hpp"
 #include "hgridlab/packing/packing.hpp"
 #include "hgridlab/packing/packing_sizes.hpp"
 
@@ -23,6 +24,7 @@ struct GridOptions {
   int threads = 0;  // 0: all cores (OMP_NUM_THREADS)
   bool decompose = false;  // over the ranks of an MPI run (cmd_decompose.cpp)
   std::string wall_pairs = "layer";  // count: the excluded-volume model's pairs near a wall
+  double excluded_budget = kDiscWorkPerSecond;  // count: most multiply-adds of the 2D excluded-volume model
 };
 
 void add_grid_options(CLI::App* sub, GridOptions& o);

@@ -33,6 +33,7 @@ struct MeasureOptions {
   bool model = false;              // the paper's model (random centres) for the sizes used
   bool excluded_model = false;     // with model: the excluded-volume model too (hard spheres)
   bool model_progress = false;     // a long 2D excluded-volume solution reports on stderr
+  double excluded_work_budget = 0;  // 2D: the most multiply-adds of its solution (ExcludedOptions; 0: none)
   WallPairs wall_pairs = WallPairs::depleted_layer;  // walls: the excluded-volume model's pairs near a wall
   bool occupancy = false;          // share of lowest-level cells holding >= 2 particles
   std::optional<TimingOptions> timing;  // also time uncounted build + query runs, keep the fastest

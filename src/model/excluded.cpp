@@ -204,6 +204,7 @@ std::vector<double> disc_excess(const std::vector<Bin>& bins, const std::vector<
   detail::PyNumericGrid g;
   g.dr = opt.disc_dr * smin;
   g.max_iterations = kMaxDiscIterations;
+  g.max_work = opt.disc_work_budget;
   // Walls: one more component, a disc kWallDiameter times the largest (its
   // radius on the r grid) at a negligible density, as in 3D.
   std::vector<double> rho_all = rho, sigma_all = sigma;
@@ -219,6 +220,15 @@ std::vector<double> disc_excess(const std::vector<Bin>& bins, const std::vector<
   std::optional<detail::PyNumeric> py;
   try {
     py.emplace(2, rho_all, sigma_all, g, opt.on_iteration);
+  } catch (const detail::PyWorkBudget& b) {
+    char v[400];
+    std::snprintf(v, sizeof v,
+                  "the 2D excluded-volume model of these discs at nu = %.4g %s %.3g multiply-adds (~%.2g s): it "
+                  "takes %.3g per iteration, up to %d iterations (~%.0f s); a budget of 0 (none) lets it try",
+                  nu, b.refused_before ? "cannot be tried within" : "did not converge within", opt.disc_work_budget,
+                  opt.disc_work_budget / kDiscWorkPerSecond, b.work_per_iteration, kMaxDiscIterations,
+                  b.work_per_iteration * kMaxDiscIterations / kDiscWorkPerSecond);
+    throw InputError("excluded-budget", v);
   } catch (const std::runtime_error&) {
     char v[32];
     std::snprintf(v, sizeof v, "%.4g", nu);

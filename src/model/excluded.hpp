@@ -43,6 +43,12 @@ struct ExcludedOptions {
   /// fraction of the density being solved and the iterations so far (at
   /// most kMaxDiscIterations; seconds per iteration grow like omega^2).
   std::function<void(double, int)> on_iteration;
+  /// 2D: if > 0, the most multiply-adds the numerical solution may take
+  /// (deterministic, unlike a time limit; kDiscWorkPerSecond of them take
+  /// about a second on the reference machine). Beyond it the model refuses
+  /// with an InputError naming "excluded-budget": before any iteration when
+  /// the budget buys fewer than the fewest iterations a solution has taken.
+  double disc_work_budget = 0;
   WallPairs wall_pairs = WallPairs::depleted_layer;  // walls only; not a discretisation
 };
 
@@ -55,6 +61,12 @@ struct WallBox {
 /// Most iterations of the 2D numerical Percus-Yevick solution, over its
 /// density continuation; past them the model refuses (InputError naming nu).
 inline constexpr int kMaxDiscIterations = 1000;
+/// Multiply-adds of the 2D numerical solution per second on one core of the
+/// reference machine (AMD EPYC Zen 5 VM, docs/PERFORMANCE.md: 2.54e8 per
+/// iteration at omega = 50 took 37.8 s for 1000 iterations): the default
+/// budget of `hgrid count` and Python's count (about a second), and the
+/// seconds its refusals state.
+inline constexpr double kDiscWorkPerSecond = 6.0e9;
 
 /// Largest number of wave numbers the model evaluates; beyond it (omega above
 /// a few thousand) it refuses with an InputError naming omega.

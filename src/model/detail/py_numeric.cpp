@@ -147,6 +147,16 @@ PyNumeric::PyNumeric(int d, std::vector<double> rho, std::vector<double> sigma, 
       w[n + 1] *= measure(d, s);
     }
   offset_[P] = total;
+  // Multiply-adds of one iteration: the forward and inverse transforms
+  // (2 nk per node), and the Ornstein-Zernike solve per wave number (~2 M^3).
+  const double per_iteration = 2.0 * static_cast<double>(total) * g.nk + 2.0 * g.nk * std::pow(M, 3.0);
+  int budget_iterations = g.max_iterations;
+  if (g.max_work > 0) {
+    const double affordable = std::floor(g.max_work / per_iteration);
+    if (affordable < kPyMinIterations) throw PyWorkBudget(per_iteration, static_cast<int>(affordable), true);
+    budget_iterations = static_cast<int>(std::min<double>(affordable, g.max_iterations));
+    g_.max_iterations = budget_iterations;
+  }
   uniform_rows_ = std::max(n_max + 1, static_cast<int>(std::floor(g.r_out / g.dr)) + 1);
   const std::size_t rows = static_cast<std::size_t>(uniform_rows_) + P;
   kernel_.resize(rows * g.nk);
@@ -176,7 +186,9 @@ PyNumeric::PyNumeric(int d, std::vector<double> rho, std::vector<double> sigma, 
       t_last = t_done;
       t_done = t;
       step_t = std::min(kStage, 1.5 * step_t);
-    } else if ((step_t *= 0.5) < 1e-3 || ++attempts > 40 || iterations_ >= g.max_iterations) {
+    } else if (iterations_ >= g_.max_iterations && budget_iterations < g.max_iterations) {
+      throw PyWorkBudget(per_iteration, budget_iterations, false);
+    } else if ((step_t *= 0.5) < 1e-3 || ++attempts > 40 || iterations_ >= g_.max_iterations) {
       throw std::runtime_error("Percus-Yevick iteration did not converge (packing fraction " + std::to_string(eta) + ")");
     }
   }

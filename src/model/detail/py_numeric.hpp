@@ -9,6 +9,7 @@
 // checked against Baxter's (PyMixture). docs/MODEL.md section 8.
 #pragma once
 #include <functional>
+#include <stdexcept>
 #include <vector>
 
 namespace hgrid::detail {
@@ -20,7 +21,23 @@ struct PyNumericGrid {
   double r_out = 0;       // gamma_sums covers r = 0 .. r_out
   double tol = 1e-6;      // converged when max |gamma_new - gamma| < tol (T/N moves < 1e-8 below 1e-5)
   int max_iterations = 1000;  // in all, over the density continuation
+  /// If > 0: the most multiply-adds the iteration may take in all (each
+  /// iteration costs work_per_iteration()); see PyWorkBudget.
+  double max_work = 0;
 };
+
+/// Thrown when the solution would need more than PyNumericGrid::max_work:
+/// before any iteration when the budget buys fewer than kPyMinIterations
+/// (the fewest a density continuation has taken), else when it runs out.
+struct PyWorkBudget : std::runtime_error {
+  PyWorkBudget(double per_iteration, int iterations, bool before)
+      : std::runtime_error("Percus-Yevick iteration: work budget"),
+        work_per_iteration(per_iteration), affordable_iterations(iterations), refused_before(before) {}
+  double work_per_iteration;
+  int affordable_iterations;
+  bool refused_before;
+};
+inline constexpr int kPyMinIterations = 40;
 
 class PyNumeric {
  public:
@@ -29,6 +46,8 @@ class PyNumeric {
   /// be < 1. Solves at construction; throws std::runtime_error when the
   /// iteration does not converge.
   /// progress(t, iterations): after each iteration, t the density fraction being solved.
+  /// With g.max_work > 0, throws PyWorkBudget (before the transforms' tables
+  /// are built when the budget is too small to try).
   PyNumeric(int d, std::vector<double> rho, std::vector<double> sigma, const PyNumericGrid& g,
             const std::function<void(double, int)>& progress = {});
 
