@@ -28,6 +28,7 @@
 #include "hgridlab/model/model.hpp"
 #include "hgridlab/model/time_model.hpp"
 #include "hgridlab/packing/generate.hpp"
+#include "hgridlab/packing/identity.hpp"
 #include "hgridlab/packing/grid_placement.hpp"
 #include "hgridlab/packing/packing.hpp"
 #include "hgridlab/packing/packing_model.hpp"

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "hgridlab/base/error.hpp"
+#include "hgridlab/packing/identity.hpp"
 #include "hgridlab/scenes/scene.hpp"
 
 namespace hgrid {

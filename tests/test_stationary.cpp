@@ -11,6 +11,7 @@
 #include "hgridlab/base/error.hpp"
 #include "hgridlab/packing/detail/gen_stationary.hpp"
 #include "hgridlab/packing/generate.hpp"
+#include "hgridlab/packing/identity.hpp"
 
 namespace hgrid {
 namespace {

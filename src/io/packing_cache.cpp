@@ -1,7 +1,5 @@
 #include "hgridlab/io/packing_cache.hpp"
 
-#include <cinttypes>
-#include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <iostream>
@@ -14,17 +12,6 @@
 namespace hgrid {
 
 namespace {
-
-std::string hashed_path(const std::string& key, const std::string& dir, const std::string& suffix) {
-  std::uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a, 64 bit
-  for (unsigned char c : key) {
-    h ^= c;
-    h *= 0x100000001b3ull;
-  }
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016" PRIx64, h);
-  return (std::filesystem::path(dir) / (std::string(buf) + suffix)).string();
-}
 
 /// The cached packing at `path` if it is what check() accepts (""), else
 /// nothing (a rejected file is reported when `say` is set).
@@ -44,14 +31,6 @@ std::optional<Packing> read_valid(const std::string& path, const std::function<s
 }
 
 }  // namespace
-
-std::string packing_cache_path(const PackingSpec& s, const std::string& dir) {
-  return hashed_path(packing_key(s), dir, ".h5");
-}
-
-std::string equilibration_resume_path(const PackingSpec& s, const std::string& dir) {
-  return hashed_path(equilibration_chain_key(s), dir, ".resume.h5");
-}
 
 Packing cached_packing(const PackingSpec& s, const std::string& dir) {
   const std::string path = packing_cache_path(s, dir);

@@ -1,17 +1,12 @@
-// The packing cache: every packing is generated once and kept on disk.
+// The packing cache: every packing is generated once and kept on disk, under
+// the name its identity gives it (packing/identity.hpp).
 #pragma once
 #include <string>
 
 #include "hgridlab/packing/generate.hpp"
+#include "hgridlab/packing/identity.hpp"
 
 namespace hgrid {
-
-/// dir/<16 hex digits of an FNV-1a hash of packing_key(spec)>.h5
-std::string packing_cache_path(const PackingSpec& spec, const std::string& dir);
-
-/// dir/<hash of equilibration_chain_key(spec)>.resume.h5: the furthest stage
-/// reached of one equilibration (any sweeps), with its generator state.
-std::string equilibration_resume_path(const PackingSpec& spec, const std::string& dir);
 
 /// Reads the cached packing for spec if it exists and passes
 /// packing_mismatch(); otherwise generates it and writes it atomically to

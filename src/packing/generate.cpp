@@ -1,4 +1,5 @@
 #include "hgridlab/packing/generate.hpp"
+#include "hgridlab/packing/identity.hpp"
 
 #include <algorithm>
 #include <cinttypes>
@@ -13,6 +14,7 @@
 #include "hgridlab/base/threads.hpp"
 #include "hgridlab/packing/detail/gen_common.hpp"
 #include "hgridlab/packing/detail/gen_equilibrate.hpp"
+#include "hgridlab/packing/detail/gen_record.hpp"
 #include "hgridlab/packing/detail/gen_relax.hpp"
 #include "hgridlab/packing/detail/gen_rsa.hpp"
 #include "hgridlab/packing/detail/gen_stationary.hpp"
@@ -23,13 +25,18 @@
 #include "hgridlab/packing/rcp.hpp"
 
 namespace hgrid {
+
+using detail::is_placement;
+using detail::kGeneratorVersion;
+using detail::join_series;
+using detail::kChainAttr;
+using detail::kRngAttr;
+using detail::kSeriesAttr;
+using detail::kTallyAttrs;
+using detail::recorded_series;
+
 namespace {
 
-/// Bump when a change alters the packings a spec produces (invalidates caches).
-/// 2: the growth + FIRE route sums forces over sorted neighbour lists, so that
-/// its packings no longer depend on the HGrid's pair order (version 1's did,
-/// and changed with the query's traversal).
-constexpr int kGeneratorVersion = 2;
 /// Packing fraction at which the growth route starts its sequential addition.
 constexpr double kGrowthStartNu = 0.35;
 /// Achieved nu must match the request to this relative error.
@@ -211,15 +218,6 @@ double check_packing_spec(const PackingSpec& s) {
 
 namespace {
 
-/// Names of the attributes that carry an equilibration's state.
-constexpr const char* kChainAttr = "equilibration_chain";
-constexpr const char* kRngAttr = "equilibration_rng_state";
-constexpr const char* kTallyAttrs[4] = {"equilibration_moves_accepted", "equilibration_moves_proposed",
-                                        "equilibration_swaps_accepted", "equilibration_swaps_proposed"};
-/// stop = stationary: the observable's samples so far (every
-/// kStationarySampleSweeps sweeps, %.17g, comma separated), what resuming
-/// needs to take the same decision.
-constexpr const char* kSeriesAttr = "stationarity_series";
 
 /// The stationarity observable's state during an equilibration.
 struct StopState {
@@ -228,38 +226,7 @@ struct StopState {
   detail::Stationarity last;   // the test after the last sample
 };
 
-std::string join_series(const std::vector<double>& v) {
-  std::string out;
-  char buf[32];
-  for (double x : v) {
-    std::snprintf(buf, sizeof buf, "%.17g", x);
-    if (!out.empty()) out += ',';
-    out += buf;
-  }
-  return out;
-}
 
-/// The series recorded in p, or nothing when it is absent or unreadable.
-std::optional<std::vector<double>> recorded_series(const Packing& p) {
-  const auto it = p.str_attrs.find(kSeriesAttr);
-  if (it == p.str_attrs.end()) return std::nullopt;
-  std::vector<double> v;
-  const std::string& t = it->second;
-  std::size_t at = 0;
-  while (at < t.size()) {
-    const std::size_t end = std::min(t.find(',', at), t.size());
-    try {
-      std::size_t used = 0;
-      const std::string item = t.substr(at, end - at);
-      v.push_back(std::stod(item, &used));
-      if (used != item.size() || !std::isfinite(v.back())) return std::nullopt;
-    } catch (const std::exception&) {
-      return std::nullopt;
-    }
-    at = end + 1;
-  }
-  return v;
-}
 
 /// T/N = (narrow-phase checks + K cell accesses) / N of the counted HGrid
 /// search of p with these sizes (Top-Down, K = kStationaryK).
@@ -342,45 +309,10 @@ void describe(Packing& p, const PackingSpec& s, const Distribution& dist, double
     throw std::logic_error("generate_packing: achieved nu " + format_number(q.nu) + " differs from " + format_number(s.nu));
 }
 
-/// Whether p is a placement (generated without equilibration).
-bool is_placement(const Packing& p) {
-  const auto eq = p.num_attrs.find("equilibrate");
-  return eq != p.num_attrs.end() && eq->second == 0;
-}
 
 }  // namespace
 
-std::string resume_mismatch(const Packing& from, const PackingSpec& s) {
-  if (!s.equilibrate) return "the requested packing is not equilibrated";
-  if (is_placement(from)) {  // sweep 0 of every equilibration of it
-    if (!from.str_attrs.count(kRngAttr)) return "it records no generator state (placed by an older hgrid)";
-    PackingSpec placed = s;
-    placed.equilibrate = false;
-    return packing_mismatch(from, placed);
-  }
-  const auto chain = from.str_attrs.find(kChainAttr);
-  if (chain == from.str_attrs.end() || !from.str_attrs.count(kRngAttr) || !from.num_attrs.count("equilibration_sweeps"))
-    return "it records no resumable equilibration";
-  if (chain->second != equilibration_chain_key(s)) return "its parameters differ";
-  for (const char* a : kTallyAttrs)
-    if (!from.num_attrs.count(a)) return "it records no resumable equilibration";
-  const double done = from.num_attrs.at("equilibration_sweeps");
-  if (!(done >= 1 && done <= s.sweeps && done == std::floor(done))) return "it is further than the requested sweeps";
-  if (s.stop == EquilibrationStop::stationary) {
-    const auto series = recorded_series(from);
-    if (!series || series->size() != static_cast<std::size_t>(done) / detail::kStationarySampleSweeps)
-      return "it records no stationarity series for its sweeps";
-    if (detail::test_stationary(*series, s.stationary_tol).stationary) return "it ended its run (stationary)";
-  }
-  PackingSpec at = s;
-  at.sweeps = static_cast<int>(done);
-  return packing_mismatch(from, at);
-}
 
-std::uint64_t equilibration_sweeps_done(const Packing& p) {
-  const auto it = p.num_attrs.find("equilibration_sweeps");
-  return it == p.num_attrs.end() ? 0 : static_cast<std::uint64_t>(it->second);
-}
 
 Packing generate_packing(const PackingSpec& s, const Packing* from, const PackingCheckpoint& checkpoint) {
   const double rcp = check_packing_spec(s);
@@ -465,37 +397,6 @@ Packing random_packing(const RandomSpec& r, const Distribution& dist) {
   return p;
 }
 
-std::string packing_key(const PackingSpec& s) {
-  std::string k = "hgridlab-packing v" + std::to_string(kGeneratorVersion) + " d=" + std::to_string(s.d) +
-                  " n=" + std::to_string(s.n) + " nu=" + format_number(s.nu) + " dist=" + s.dist;
-  k += s.dist == "lognormal" ? " sigma=" + format_number(s.sigma) : " alpha=" + format_number(s.alpha);
-  k += " omega=" + format_number(s.omega) + " boundary=" + to_string(s.boundary) + " placement=" + to_string(s.placement) +
-       (s.placement == Placement::excluded && s.method != ExcludedMethod::automatic
-            ? std::string(" method=") + to_string(s.method)
-            : std::string()) +
-       " seed=" + std::to_string(s.seed) + " equilibrate=" +
-       (s.equilibrate ? std::string("1 checkerboard") +
-                            (s.stop == EquilibrationStop::stationary ? " until=" + detail::stationarity_rule(s.stationary_tol) : std::string()) +
-                            " sweeps=" + std::to_string(s.sweeps)
-                      : "0");
-  return k;
-}
 
-std::string equilibration_chain_key(const PackingSpec& s) {
-  PackingSpec base = s;
-  base.sweeps = 0;
-  const std::string k = packing_key(base);
-  return k.substr(0, k.rfind(" sweeps="));
-}
-
-std::string packing_mismatch(const Packing& p, const PackingSpec& s) {
-  const auto key = p.str_attrs.find("cache_key");
-  if (key == p.str_attrs.end() || key->second != packing_key(s)) return "its parameters differ";
-  if (p.size() != s.n || p.d != s.d || p.boundary != s.boundary) return "N, d or boundary differ";
-  if (std::abs(p.packing_fraction() / s.nu - 1) > kNuRelTol) return "its nu differs";
-  if (s.placement == Placement::excluded && assess_packing(p, nullptr).max_rel_overlap > detail::kFinalOverlapTol)
-    return "it has overlaps above tolerance";
-  return "";
-}
 
 }  // namespace hgrid

@@ -98,7 +98,7 @@ double check_packing_spec(const PackingSpec& spec);
 /// its random generator's state (an equilibrated one also its running
 /// totals), and generate_packing(spec, &from) continues `from` (the same
 /// spec at fewer or as many sweeps, or its placement: the same spec without
-/// equilibration, sweep 0; see resume_mismatch) to spec.sweeps. The result is the uninterrupted run's,
+/// equilibration, sweep 0; see resume_mismatch in packing/identity.hpp) to spec.sweeps. The result is the uninterrupted run's,
 /// bit for bit. `checkpoint`, if given, receives the packing part-way (its
 /// attributes those of the same spec at the sweeps done) at most every
 /// spec.checkpoint_seconds of a long equilibration.
@@ -106,29 +106,11 @@ using PackingCheckpoint = std::function<void(const Packing& partial)>;
 Packing generate_packing(const PackingSpec& spec, const Packing* from = nullptr,
                          const PackingCheckpoint& checkpoint = {});
 
-/// Why generate_packing(spec, &from) cannot resume from `from` ("" when it
-/// can): neither an equilibration of the same packing nor its placement, one
-/// without the recorded state, one further than spec.sweeps, or one failing
-/// packing_mismatch.
-std::string resume_mismatch(const Packing& from, const PackingSpec& spec);
 
-/// Monte Carlo sweeps a packing records (0 when not equilibrated).
-std::uint64_t equilibration_sweeps_done(const Packing& p);
 
 /// Relative tolerance on the achieved packing fraction of a generated packing.
 inline constexpr double kNuRelTol = 1e-12;
 
-/// The one identity of a packing: every field of spec that changes the
-/// packing, and the generator version (stored as the "cache_key" attribute).
-std::string packing_key(const PackingSpec& spec);
-
-/// packing_key without the sweeps: the same for every stage of one
-/// equilibration (stored as the "equilibration_chain" attribute).
-std::string equilibration_chain_key(const PackingSpec& spec);
-
-/// Why p is not the packing spec generates ("" when it is): its recorded key,
-/// N, d, boundary, achieved nu, and (excluded volume) its overlaps.
-std::string packing_mismatch(const Packing& p, const PackingSpec& spec);
 
 /// Random close packing estimate of a size distribution, see rcp.hpp.
 double estimate_rcp(int d, const Distribution& dist);

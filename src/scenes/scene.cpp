@@ -11,6 +11,7 @@
 #include <toml++/toml.h>
 
 #include "hgridlab/calibration/calibration.hpp"
+#include "hgridlab/packing/identity.hpp"
 #include "hgridlab/scenes/detail/scene_reader.hpp"
 
 #include "hgridlab/base/error.hpp"
