@@ -164,7 +164,7 @@ class Checkerboard {
     const std::array<double, D> xi = grid_.position(i), xj = grid_.position(j);
     const double ri = grid_.radius(i), rj = grid_.radius(j);
     if (!inside<D, B>(xj, ri, box_) || !inside<D, B>(xi, rj, box_)) return false;
-    if (grid_.domain_of(xj, ri) != c || grid_.domain_of(xi, rj) != c) return false;
+    if (grid_.domain_at(xj, grid_.level(i)) != c || grid_.domain_at(xi, grid_.level(j)) != c) return false;
     grid_.erase(i);
     grid_.erase(j);
     const bool ok = !grid_.overlaps(xj, ri, 0) && !grid_.overlaps(xi, rj, 0);
@@ -194,7 +194,7 @@ class Checkerboard {
         if constexpr (B == Boundary::periodic) x[k] = wrap(x[k], box_[k]);
       }
       ++t.proposed;
-      if (!inside<D, B>(x, r, box_) || grid_.domain_of(x, r) != c || grid_.overlaps(x, r, 0, i)) continue;
+      if (!inside<D, B>(x, r, box_) || grid_.domain_at(x, grid_.level(i)) != c || grid_.overlaps(x, r, 0, i)) continue;
       grid_.erase(i);
       grid_.insert(i, x, r);
       ++t.accepted;

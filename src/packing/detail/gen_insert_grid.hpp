@@ -54,9 +54,7 @@ class InsertGrid {
       }
       lv.head.assign(cells, kEmpty);
     }
-    next_.assign(radii.size(), kEmpty);
-    pos_.assign(radii.size(), {});
-    rad_.assign(radii.size(), 0.0);
+    nodes_.assign(radii.size(), Node{});
   }
 
   /// The domain layout: `domains[k]` domains of width `width[k]` per axis
@@ -92,8 +90,10 @@ class InsertGrid {
 
   /// The domain (per-axis index, linearised) of a sphere of radius r at x:
   /// the domain of its cell at its own level.
-  std::size_t domain_of(const std::array<double, D>& x, double r) const {
-    const Level& lv = levels_[level_of(r)];
+  std::size_t domain_of(const std::array<double, D>& x, double r) const { return domain_at(x, level_of(r)); }
+  /// The same for a sphere of level l (level_of(r)).
+  std::size_t domain_at(const std::array<double, D>& x, int l) const {
+    const Level& lv = levels_[l];
     std::size_t c = 0;
     for (int k = D - 1; k >= 0; --k)
       c = c * static_cast<std::size_t>(lv.n[k] / lv.m[k]) + static_cast<std::size_t>(coord(lv, x[k], k) / lv.m[k]);
@@ -105,33 +105,38 @@ class InsertGrid {
 
   /// Stores sphere `id` (ids 0..n-1, each once).
   void insert(std::uint32_t id, const std::array<double, D>& x, double r) {
-    Level& lv = levels_[level_of(r)];
+    const int l = level_of(r);
+    Level& lv = levels_[l];
     const std::size_t c = cell_of(lv, x);
-    pos_[id] = x;
-    rad_[id] = r;
-    next_[id] = lv.head[c];
+    Node& nd = nodes_[id];
+    nd.x = x;
+    nd.r = r;
+    nd.level = l;
+    nd.next = lv.head[c];
     lv.head[c] = id;
   }
 
   /// True if (x, r) overlaps (distance < r + r_q) a stored sphere at a level
   /// >= from_level, other than `skip`.
   bool overlaps(const std::array<double, D>& x, double r, int from_level, std::uint32_t skip = kEmpty) const {
-    for (int l = levels() - 1; l >= from_level; --l)
+    for (int l = from_level; l < levels(); ++l)
       if (overlaps_level(levels_[l], x, r, skip)) return true;
     return false;
   }
 
   /// Removes sphere id (it must be stored): an O(cell occupancy) unlink.
   void erase(std::uint32_t id) {
-    Level& lv = levels_[level_of(rad_[id])];
-    const std::size_t c = cell_of(lv, pos_[id]);
+    Level& lv = levels_[nodes_[id].level];
+    const std::size_t c = cell_of(lv, nodes_[id].x);
     std::uint32_t* link = &lv.head[c];
-    while (*link != id) link = &next_[*link];
-    *link = next_[id];
+    while (*link != id) link = &nodes_[*link].next;
+    *link = nodes_[id].next;
   }
 
-  const std::array<double, D>& position(std::uint32_t id) const { return pos_[id]; }
-  double radius(std::uint32_t id) const { return rad_[id]; }
+  const std::array<double, D>& position(std::uint32_t id) const { return nodes_[id].x; }
+  double radius(std::uint32_t id) const { return nodes_[id].r; }
+  /// The level of stored sphere id (level_of of its radius).
+  int level(std::uint32_t id) const { return nodes_[id].level; }
 
  private:
   struct Level {
@@ -193,10 +198,13 @@ class InsertGrid {
         }
         c = c * static_cast<std::size_t>(lv.n[k]) + static_cast<std::size_t>(i);
       }
-      for (std::uint32_t q = lv.head[c]; q != kEmpty; q = next_[q]) {
-        if (q == skip) continue;
-        const double rs = r + rad_[q];
-        if (dist2<D, B>(x, pos_[q], box_) < rs * rs) return true;
+      for (std::uint32_t q = lv.head[c]; q != kEmpty;) {
+        const Node& nd = nodes_[q];
+        if (q != skip) {
+          const double rs = r + nd.r;
+          if (dist2<D, B>(x, nd.x, box_) < rs * rs) return true;
+        }
+        q = nd.next;
       }
       int k = 0;
       while (k < D && ++off[k] == cnt[k]) off[k++] = 0;
@@ -208,9 +216,16 @@ class InsertGrid {
   Extent<D> box_;
   double r0_ = 1;
   std::vector<Level> levels_;
-  std::vector<std::uint32_t> next_;
-  std::vector<std::array<double, D>> pos_;
-  std::vector<double> rad_;
+  /// A stored sphere and its cell list's next entry, together: a list walk
+  /// touches one node per candidate (were three arrays: positions, radii,
+  /// next pointers).
+  struct Node {
+    std::array<double, D> x{};
+    double r = 0;
+    std::uint32_t next = kEmpty;
+    std::int32_t level = 0;
+  };
+  std::vector<Node> nodes_;
 };
 
 }  // namespace hgrid::detail
