@@ -89,7 +89,7 @@ void BM_Growth(benchmark::State& state) { run(state, 0, 10, Placement::excluded)
 
 BENCHMARK(BM_Random)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_Rsa)->Arg(100000)->Arg(1000000)->Unit(benchmark::kSecond)->Iterations(1);
-BENCHMARK(BM_MonteCarlo)->Args({10, 1})->Args({10, 2})->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_MonteCarlo)->Args({10, 1})->Args({10, 2})->Args({100, 1})->Args({100, 2})->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(BM_Growth)->Arg(100000)->Arg(1000000)->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace
