@@ -12,7 +12,8 @@ build with -g -fno-inline (every call is a call, nothing inlined away).
   python3 bench/folder_walk.py cg.out . --headers  # also header-defined ones (types, templates)
 
 A row "A -> B  n entry functions" lists the distinct functions of folder B
-that code of folder A called; the walk crosses A -> B once when n = 1."""
+that code of folder A called, and how many calls it made; the walk
+crosses A -> B once when both are 1."""
 import re, sys, collections, subprocess
 out, root = sys.argv[1], sys.argv[2].rstrip('/') + '/src/'
 headers = '--headers' in sys.argv[3:]
@@ -56,9 +57,12 @@ def demangle(names):
     p = subprocess.run(['c++filt'], input='\n'.join(names), capture_output=True, text=True)
     return dict(zip(names, p.stdout.split('\n')))
 cross = collections.defaultdict(set)  # (A,B) -> callee entry functions
+moves = collections.Counter()          # (A,B) -> calls made
 for (a, b), n in edges.items():
     fa, fb = folder(a), folder(b)
-    if fa and fb and fa != fb: cross[(fa, fb)].add(b)
+    if fa and fb and fa != fb:
+        cross[(fa, fb)].add(b)
+        moves[(fa, fb)] += n
 dm = demangle(sorted({b for s in cross.values() for b in s}))
 visited = sorted({rel(fn_file[f]) for f in fn_file if folder(f)})
 print(f"files of src/ entered: {len(visited)}; folders: {sorted({v.split('/')[0] for v in visited})}")
@@ -66,5 +70,5 @@ total = 0
 for (a, b) in sorted(cross):
     s = cross[(a, b)]; total += len(s)
     short = sorted({re.sub(r'\(.*', '', dm.get(x, x)).replace('hgrid::', '') for x in s})
-    print(f"{a:>12} -> {b:<12} {len(s):3d} entry functions: {', '.join(short[:8])}{' ...' if len(short) > 8 else ''}")
-print(f"folder pairs crossed: {len(cross)}; entry functions across folders: {total}")
+    print(f"{a:>12} -> {b:<12} {moves[(a, b)]:5d} calls {len(s):3d} entry functions: {', '.join(short[:8])}{' ...' if len(short) > 8 else ''}")
+print(f"folder pairs crossed: {len(cross)}; entry functions across folders: {total}; calls across folders: {sum(moves.values())}")
