@@ -188,8 +188,9 @@ PYBIND11_MODULE(hgridlab, m) {
         "The counted search (the same counts for any number of threads) as a dict with the fields of "
         "`hgrid count --json` (docs/MEASUREMENT.md): cell_accesses, narrow_phase_checks, contacts, "
         "particles_per_level, accesses_by_level and checks_by_level (L x L, row-major: level of the particle, level "
-        "searched), sizes (as used), T_over_N, ...; model=True adds the cost models' predictions (model_*); for discs the excluded-volume model within "
-        "excluded_budget multiply-adds (as `hgrid count --excluded-budget`; 0: none).");
+        "searched), sizes (as used), T_over_N, ...; model=True adds the cost models' predictions (model_*), for "
+        "discs the excluded-volume model within excluded_budget multiply-adds (as `hgrid count --excluded-budget`; "
+        "0: none).");
   m.def("measurement_fields", [] {
     py::list out;
     for (const MeasurementField& f : measurement_fields())

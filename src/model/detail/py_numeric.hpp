@@ -21,8 +21,8 @@ struct PyNumericGrid {
   double r_out = 0;       // gamma_sums covers r = 0 .. r_out
   double tol = 1e-6;      // converged when max |gamma_new - gamma| < tol (T/N moves < 1e-8 below 1e-5)
   int max_iterations = 1000;  // in all, over the density continuation
-  /// If > 0: the most multiply-adds the iteration may take in all (each
-  /// iteration costs work_per_iteration()); see PyWorkBudget.
+  /// If > 0: the most multiply-adds the iteration may take in all (one
+  /// iteration's, known before the first: PyWorkBudget::work_per_iteration).
   double max_work = 0;
 };
 
