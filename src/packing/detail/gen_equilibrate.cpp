@@ -195,8 +195,7 @@ class Checkerboard {
       }
       ++t.proposed;
       if (!inside<D, B>(x, r, box_) || grid_.domain_at(x, grid_.level(i)) != c || grid_.overlaps(x, r, 0, i)) continue;
-      grid_.erase(i);
-      grid_.insert(i, x, r);
+      grid_.move(i, x);
       ++t.accepted;
     }
     return t;

@@ -124,6 +124,18 @@ class InsertGrid {
     return false;
   }
 
+  /// Moves stored sphere id to x (erase, then insert at its own level: its
+  /// radius and level are kept, not recomputed).
+  void move(std::uint32_t id, const std::array<double, D>& x) {
+    erase(id);
+    Node& nd = nodes_[id];
+    Level& lv = levels_[nd.level];
+    const std::size_t c = cell_of(lv, x);
+    nd.x = x;
+    nd.next = lv.head[c];
+    lv.head[c] = id;
+  }
+
   /// Removes sphere id (it must be stored): an O(cell occupancy) unlink.
   void erase(std::uint32_t id) {
     Level& lv = levels_[nodes_[id].level];
