@@ -95,7 +95,8 @@ void add_models(const Packing& p, const MeasureOptions& o, Measurement& m) {
   const Empirical dist(p.radii);
   const std::vector<double> sizes = sizes_for_grid(m.sizes, 2 * dist.r_max());
   const PackingModels pm =
-      model_for_packing(p, sizes, m.search, o.K, {o.excluded_model, o.model_progress, o.wall_pairs, o.excluded_work_budget});
+      model_for_packing(p, sizes, m.search, o.K,
+                        {o.excluded_model, o.model_progress, o.wall_pairs, o.excluded_work_budget});
   const double n = static_cast<double>(m.n);
   const auto checks = [n](const std::vector<double>& per_particle) {
     std::vector<double> out;
