@@ -55,16 +55,11 @@ class Relaxer {
         dt_max = dt_max_;
         dt = std::min(dt, dt_max);
       }
-      max_rel = forces();
+      Sums sums;
+      max_rel = forces(sums);
       if (max_rel < tol) return step;
       if (step == budget) return budget + 1;
-      double P = 0, vv = 0, ff = 0;
-      for (std::size_t i = 0; i < r_.size(); ++i)
-        for (int k = 0; k < D; ++k) {
-          P += f_[i][k] * v_[i][k];
-          vv += v_[i][k] * v_[i][k];
-          ff += f_[i][k] * f_[i][k];
-        }
+      const double P = sums.P, vv = sums.vv, ff = sums.ff;
       const bool uphill = !(P > 0);  // FIRE: stop (velocities to zero), else mix velocities towards the forces
       const double keep = 1 - alpha, mix = !uphill && ff > 0 ? alpha * std::sqrt(vv / ff) : 0.0;
       if (!uphill) {
@@ -85,27 +80,29 @@ class Relaxer {
   const std::vector<Vec>& positions() const { return x_; }
 
  private:
-  /// fn(i) for every sphere, on the threads when there are several.
-  template <class Fn>
-  void each_sphere(Fn&& fn) const {
-    const auto n = static_cast<std::int64_t>(r_.size());
-#if defined(_OPENMP)
-    if (threads_ > 1) {
-#pragma omp parallel for num_threads(threads_) schedule(static)
-      for (std::int64_t i = 0; i < n; ++i) fn(static_cast<std::size_t>(i));
-      return;
+  /// FIRE's sums over the spheres: power f.v and the squared norms.
+  struct Sums {
+    double P = 0, vv = 0, ff = 0;
+  };
+
+  /// Adds sphere i's terms to the sums (in the one order every thread count uses:
+  /// spheres in increasing i, axes in increasing k).
+  void add_sums(std::size_t i, Sums& s) const {
+    for (int k = 0; k < D; ++k) {
+      s.P += f_[i][k] * v_[i][k];
+      s.vv += v_[i][k] * v_[i][k];
+      s.ff += f_[i][k] * f_[i][k];
     }
-#endif
-    for (std::int64_t i = 0; i < n; ++i) fn(static_cast<std::size_t>(i));
   }
 
-  /// Has sphere i moved or grown through its skin since the list was built?
-  bool moved(std::size_t i) const {
-    const double margin = built_lambda_ * r_[i] * (1 + kSkin) - lambda_ * r_[i];
+  /// Has a sphere at x (at xref when the list was built at scale `built`)
+  /// of radius r at scale `lambda` moved or grown through its skin?
+  static bool moved(const Vec& x, const Vec& xref, double r, double lambda, double built, const Extent<D>& box) {
+    const double margin = built * r * (1 + kSkin) - lambda * r;
     double d2 = 0;
     for (int k = 0; k < D; ++k) {
-      double dx = x_[i][k] - xref_[i][k];
-      if constexpr (B == Boundary::periodic) dx = min_image(dx, box_[k]);
+      double dx = x[k] - xref[k];
+      if constexpr (B == Boundary::periodic) dx = min_image(dx, box[k]);
       d2 += dx * dx;
     }
     return margin <= 0 || d2 >= margin * margin;
@@ -114,7 +111,7 @@ class Relaxer {
   bool needs_rebuild() const {
     if (start_.empty()) return true;
     for (std::size_t i = 0; i < r_.size(); ++i)
-      if (moved(i)) return true;
+      if (moved(x_[i], xref_[i], r_[i], lambda_, built_lambda_, box_)) return true;
     return false;
   }
 
@@ -122,19 +119,34 @@ class Relaxer {
   /// keep v + mix f; then v += dt f, x += dt v): one pass, on the threads.
   /// Returns whether the list must be rebuilt before the next forces.
   bool advance(bool uphill, double keep, double mix, double dt) {
-    std::atomic<bool> any{false};
-    each_sphere([&](std::size_t i) {
+    // What the loop reads besides the arrays it writes, in locals: the
+    // stores to v_ and x_ could alias members, which would then be reloaded
+    // for every sphere (measured: a third of a FIRE step went to this pass).
+    const Extent<D> box = box_;
+    const double lambda = lambda_, built = built_lambda_;
+    const double* const r = r_.data();
+    const Vec* const f = f_.data();
+    const Vec* const xref = xref_.data();
+    Vec* const v = v_.data();
+    Vec* const x = x_.data();
+    const auto n = static_cast<std::int64_t>(r_.size());
+    bool any = false;  // a sphere through its skin; once one is, the others need not be checked
+#if defined(_OPENMP)
+#pragma omp parallel for num_threads(threads_) schedule(static) reduction(|| : any) if (threads_ > 1)
+#endif
+    for (std::int64_t s = 0; s < n; ++s) {
+      const auto i = static_cast<std::size_t>(s);
       for (int k = 0; k < D; ++k) {
-        double v = uphill ? 0.0 : keep * v_[i][k] + mix * f_[i][k];
-        v += dt * f_[i][k];
-        v_[i][k] = v;
-        double y = x_[i][k] + dt * v;
-        if constexpr (B == Boundary::periodic) y = wrap(y, box_[k]);
-        x_[i][k] = y;
+        double vk = uphill ? 0.0 : keep * v[i][k] + mix * f[i][k];
+        vk += dt * f[i][k];
+        v[i][k] = vk;
+        double y = x[i][k] + dt * vk;
+        if constexpr (B == Boundary::periodic) y = wrap(y, box[k]);
+        x[i][k] = y;
       }
-      if (moved(i)) any.store(true, std::memory_order_relaxed);
-    });
-    return any.load(std::memory_order_relaxed);
+      if (!any) any = moved(x[i], xref[i], r[i], lambda, built, box);
+    }
+    return any;
   }
 
   void build_list() {
@@ -195,16 +207,36 @@ class Relaxer {
           if (const std::uint32_t j = nbr_[m]; j >= range_[b + 1]) cross_i_[at[j]++] = i;
   }
 
-  /// The pair (i, j), i < j, with xi = x_[i], ri = lambda_ r_[i]: false if
+  /// What the force loop reads, copied into a local: the stores to the
+  /// forces could otherwise alias members, and every pair would reload them.
+  struct View {
+    const Vec* x;
+    const double* r;
+    double lambda;
+    Extent<D> box, half;  // half: box / 2, min_image's bound
+  };
+
+  View view() const {
+    View w{x_.data(), r_.data(), lambda_, box_, box_};
+    for (int k = 0; k < D; ++k) w.half[k] = 0.5 * box_[k];
+    return w;
+  }
+
+  /// The pair (i, j), i < j, with xi = x[i], ri = lambda r[i]: false if
   /// they do not push each other; else the force c on j (-c on i). worst:
   /// raised to their relative overlap if they overlap.
-  bool pair_force(const Vec& xi, double ri, std::uint32_t j, Vec& c, double& worst) const {
-    const double sig = ri + lambda_ * r_[j];
+  static bool pair_force(const View& w, const Vec& xi, double ri, std::uint32_t j, Vec& c, double& worst) {
+    const double sig = ri + w.lambda * w.r[j];
     Vec dx;
     double d2 = 0;
     for (int k = 0; k < D; ++k) {
-      dx[k] = x_[j][k] - xi[k];
-      if constexpr (B == Boundary::periodic) dx[k] = min_image(dx[k], box_[k]);
+      dx[k] = w.x[j][k] - xi[k];
+      if constexpr (B == Boundary::periodic) {  // min_image(), its bound precomputed
+        if (dx[k] > w.half[k])
+          dx[k] -= w.box[k];
+        else if (dx[k] < -w.half[k])
+          dx[k] += w.box[k];
+      }
       d2 += dx[k] * dx[k];
     }
     if (d2 >= sig * sig) return false;
@@ -219,56 +251,68 @@ class Relaxer {
 
   /// Forces on the spheres of [lo, hi) (see the top of the file); returns
   /// the largest relative overlap among the pairs of their rows and walls.
+  /// One thread (!kRanges) also adds each sphere to `sums` as soon as its
+  /// force is complete (after its row: later rows only add to later
+  /// spheres), so the sums' serial chain of additions overlaps the pair work
+  /// instead of making a pass of its own; the order is the same.
   template <bool kRanges>
-  double range_forces(std::uint32_t lo, std::uint32_t hi) {
+  double range_forces(std::uint32_t lo, std::uint32_t hi, Sums* sums = nullptr) {
+    const View w = view();
+    Vec* const f = f_.data();
+    const std::uint32_t* const start = start_.data();
+    const std::uint32_t* const nbr = nbr_.data();
     Vec c;
     double worst = 0, unused = 0;  // a cross pair's overlap counts in its row
     for (std::uint32_t p = lo; p < hi; ++p) {
-      f_[p].fill(0.0);
+      f[p].fill(0.0);
       if constexpr (kRanges) {
         for (std::uint32_t x = cross_start_[p]; x < cross_start_[p + 1]; ++x) {
           const std::uint32_t i = cross_i_[x];
-          if (pair_force(x_[i], lambda_ * r_[i], p, c, unused))
-            for (int k = 0; k < D; ++k) f_[p][k] += c[k];
+          if (pair_force(w, w.x[i], w.lambda * w.r[i], p, c, unused))
+            for (int k = 0; k < D; ++k) f[p][k] += c[k];
         }
       }
     }
     for (std::uint32_t i = lo; i < hi; ++i) {
-      const Vec xi = x_[i];
-      const double ri = lambda_ * r_[i];
-      for (std::uint32_t m = start_[i]; m < start_[i + 1]; ++m) {
-        const std::uint32_t j = nbr_[m];
-        if (!pair_force(xi, ri, j, c, worst)) continue;
-        for (int k = 0; k < D; ++k) f_[i][k] -= c[k];
+      const Vec xi = w.x[i];
+      const double ri = w.lambda * w.r[i];
+      Vec fi = f[i];  // its row alone changes it from here on: the same additions, in a register
+      for (std::uint32_t m = start[i]; m < start[i + 1]; ++m) {
+        const std::uint32_t j = nbr[m];
+        if (!pair_force(w, xi, ri, j, c, worst)) continue;
+        for (int k = 0; k < D; ++k) fi[k] -= c[k];
         if (!kRanges || j < hi)
-          for (int k = 0; k < D; ++k) f_[j][k] += c[k];
+          for (int k = 0; k < D; ++k) f[j][k] += c[k];
       }
       if constexpr (B == Boundary::walls) {
         for (int k = 0; k < D; ++k) {
-          const double lo_gap = ri - xi[k], hi_gap = xi[k] + ri - box_[k];
+          const double lo_gap = ri - xi[k], hi_gap = xi[k] + ri - w.box[k];
           if (lo_gap > 0) {
             worst = std::max(worst, lo_gap / ri);
-            f_[i][k] += lo_gap / (ri * ri);
+            fi[k] += lo_gap / (ri * ri);
           }
           if (hi_gap > 0) {
             worst = std::max(worst, hi_gap / ri);
-            f_[i][k] -= hi_gap / (ri * ri);
+            fi[k] -= hi_gap / (ri * ri);
           }
         }
       }
+      f[i] = fi;
+      if constexpr (!kRanges) add_sums(i, *sums);
     }
     return worst;
   }
 
-  /// Forces; returns the largest relative overlap.
-  double forces() {
+  /// Forces and FIRE's sums; returns the largest relative overlap.
+  double forces(Sums& sums) {
     const int T = threads_;
-    if (T == 1) return range_forces<false>(0, static_cast<std::uint32_t>(r_.size()));
+    if (T == 1) return range_forces<false>(0, static_cast<std::uint32_t>(r_.size()), &sums);
     double worst = 0;
 #if defined(_OPENMP)
 #pragma omp parallel for num_threads(T) schedule(static, 1) reduction(max : worst)
 #endif
     for (int b = 0; b < T; ++b) worst = std::max(worst, range_forces<true>(range_[b], range_[b + 1]));
+    for (std::size_t i = 0; i < r_.size(); ++i) add_sums(i, sums);
     return worst;
   }
 
