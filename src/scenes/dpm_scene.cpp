@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iostream>
 #include <random>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "hgridlab/model/cell_sizes.hpp"
@@ -24,8 +25,7 @@
 #include "hgridlab/model/model.hpp"
 #include "hgridlab/io/provenance.hpp"
 #include "hgridlab/io/packing_cache.hpp"
-#include "hgridlab/io/atomic_file.hpp"
-#include "hgridlab/io/h5.hpp"
+#include "hgridlab/io/result_table.hpp"
 #include "hgridlab/base/progress.hpp"
 
 namespace hgrid::dpm {
@@ -241,35 +241,26 @@ void run_dpm_scene(const std::string& path, const std::string& scale, const RunO
     if (i < b.E.size()) lc_E[i] = b.E[i];
   }
   const auto flat = flatten(out);
-  // HDF5: the summary as root attributes, the energy curves as datasets.
-  detail::h5_write_file(stem + ".h5", [&](hid_t f) {
-    detail::h5_write_dataset(f, "/t", a.t, {a.t.size()});
-    detail::h5_write_dataset(f, "/E_optimal", a.E, {a.E.size()});
-    detail::h5_write_dataset(f, "/E_linked_cell", lc_E, {lc_E.size()});
-    detail::h5_write_dataset(f, "/E_haff", haff_E, {haff_E.size()});
-    detail::H5Handle root{H5Gopen2(f, "/", H5P_DEFAULT), H5Gclose};
-    for (const auto& [k, v] : flat) {
-      if (v.is_string()) detail::h5_write_attr(root.id, k, v.get<std::string>());
-      else if (v.is_array()) detail::h5_write_attr(root.id, k, v.get<std::vector<double>>());
-      else detail::h5_write_attr(root.id, k, std::vector<double>{v.get<double>()});
-    }
-  });
-  // CSV: the same summary as "# key=value" lines (what plots/dpm.sh renders),
-  // then the energy curves.
-  write_stream_atomically(stem + ".csv", [&](std::ostream& csv) {
-    csv.precision(10);
-    for (const auto& [k, v] : flat) {
-      if (k == "source") continue;  // multi-line: in the HDF5 file
-      csv << "# " << k << "=";
-      if (v.is_string()) csv << v.get<std::string>();
-      else if (v.is_array()) {
-        for (std::size_t i = 0; i < v.size(); ++i) csv << (i ? ";" : "") << v[i].get<double>();
-      } else csv << v.get<double>();
-      csv << "\n";
-    }
-    csv << "t,E_optimal,E_linked_cell,E_haff\n";
-    for (std::size_t i = 0; i < a.t.size(); ++i) csv << a.t[i] << "," << a.E[i] << "," << lc_E[i] << "," << haff_E[i] << "\n";
-  });
+  // The energy curves as columns; the summary as the HDF5 file's root
+  // attributes and the CSV's "# key=value" lines (what plots/dpm.sh renders).
+  ResultTable t;
+  t.csv_precision = 10;
+  t.columns = {{"t", a.t}, {"E_optimal", a.E}, {"E_linked_cell", lc_E}, {"E_haff", haff_E}};
+  for (const auto& [k, v] : flat) {
+    if (v.is_string()) t.attributes.emplace_back(k, v.get<std::string>());
+    else if (v.is_array()) t.attributes.emplace_back(k, v.get<std::vector<double>>());
+    else t.attributes.emplace_back(k, std::vector<double>{v.get<double>()});
+    if (k == "source") continue;  // multi-line: in the HDF5 file only
+    std::ostringstream line;
+    line.precision(t.csv_precision);
+    line << k << "=";
+    if (v.is_string()) line << v.get<std::string>();
+    else if (v.is_array()) {
+      for (std::size_t i = 0; i < v.size(); ++i) line << (i ? ";" : "") << v[i].get<double>();
+    } else line << v.get<double>();
+    t.csv_comments.push_back(line.str());
+  }
+  write_result_table(stem, t);
 
   if (json) std::cout << out.dump(2) << "\n";
   else

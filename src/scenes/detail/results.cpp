@@ -8,11 +8,10 @@
 #include <unistd.h>
 
 #include "hgridlab/grid/params.hpp"
-#include "hgridlab/io/h5.hpp"
 #include "hgridlab/packing/generate.hpp"
 #include "hgridlab/packing/packing.hpp"
 #include "hgridlab/io/provenance.hpp"
-#include "hgridlab/io/atomic_file.hpp"
+#include "hgridlab/io/result_table.hpp"
 #include "hgridlab/measure/fields.hpp"
 
 namespace hgrid {
@@ -207,34 +206,6 @@ const char* const kNumericColumns[] = {"d", "n", "nu", "nu_achieved", "alpha", "
                                        "seconds_query"};
 const char* const kTextColumns[] = {"dist", "boundary", "placement", "method", "search"};
 
-void write_csv(const std::string& path, const Scene& scene, const std::vector<nlohmann::json>& rows) {
-  write_stream_atomically(path, [&](std::ostream& out) {
-    out << "# scene=" << scene.name << " scale=" << scene.scale << " " << provenance_line() << "\n";
-    std::string header;
-    for (const char* c : kTextColumns) header += std::string(header.empty() ? "" : ",") + c;
-    for (const char* c : kNumericColumns) header += std::string(",") + c;
-    out << header << ",sizes\n";
-    out.precision(17);
-    for (const auto& j : rows) {
-      std::string line;
-      for (const char* c : kTextColumns) {  // appended piece by piece: GCC 12 warns (-Wrestrict) on "," + string
-        if (!line.empty()) line += ',';
-        line += j.at(c).get<std::string>();
-      }
-      out << line;
-      for (const char* c : kNumericColumns) {
-        out << ",";
-        if (j.at(c).is_null()) out << "NaN";
-        else out << j.at(c).get<double>();
-      }
-      out << ",";
-      bool first = true;
-      for (double s : j.at("sizes")) out << (first ? "" : ";") << s, first = false;
-      out << "\n";
-    }
-  });
-}
-
 }  // namespace
 
 std::string result_json_line(const PointResult& r) { return detail::result_to_json(r).dump(); }
@@ -253,51 +224,61 @@ void write_results(const std::string& stem, const Scene& scene, const std::vecto
     rows.push_back(detail::result_to_json(r));
     lmax = std::max<std::size_t>(lmax, r.m.counts.levels);
   }
-  const hsize_t P = rows.size(), L = lmax;
-  detail::h5_write_file(stem + ".h5", [&](hid_t f) {
-    for (const char* c : kNumericColumns) {
-      std::vector<double> v;
-      for (const auto& j : rows) v.push_back(j.at(c).is_null() ? std::nan("") : j.at(c).get<double>());
-      detail::h5_write_dataset(f, c, v, {P});
-    }
-    for (const char* c : kTextColumns) {
-      std::vector<std::string> v;
-      for (const auto& j : rows) v.push_back(j.at(c));
-      detail::h5_write_strings(f, c, v);
-    }
-    // Per level (padded: NaN sizes, zero counts beyond a point's own L).
-    std::vector<double> sizes(P * L, std::nan(""));
-    std::vector<std::uint64_t> particles(P * L, 0), acc(P * L * L, 0), chk(P * L * L, 0);
-    for (std::size_t i = 0; i < results.size(); ++i) {
-      const Measurement& r = results[i].m;
-      const std::size_t l = r.counts.levels;
-      for (std::size_t h = 0; h < l; ++h) {
-        sizes[i * L + h] = r.sizes[h];
-        particles[i * L + h] = r.counts.particles_per_level[h];
-        for (std::size_t k = 0; k < l; ++k) {
-          acc[(i * L + h) * L + k] = r.counts.accesses_by_level[h * l + k];
-          chk[(i * L + h) * L + k] = r.counts.checks_by_level[h * l + k];
-        }
+  ResultTable t;
+  for (const char* c : kTextColumns) {
+    std::vector<std::string> v;
+    for (const auto& j : rows) v.push_back(j.at(c));
+    t.columns.push_back({c, std::move(v)});
+  }
+  for (const char* c : kNumericColumns) {
+    std::vector<double> v;
+    for (const auto& j : rows) v.push_back(j.at(c).is_null() ? std::nan("") : j.at(c).get<double>());
+    t.columns.push_back({c, std::move(v)});
+  }
+  // The sizes: in the CSV one column "s0;s1;...", in the HDF5 file the
+  // [point][level] array below.
+  std::vector<std::string> sizes_text;
+  for (const auto& j : rows) {
+    std::ostringstream out;
+    out.precision(t.csv_precision);
+    bool first = true;
+    for (double s : j.at("sizes")) out << (first ? "" : ";") << s, first = false;
+    sizes_text.push_back(out.str());
+  }
+  t.columns.push_back({"sizes", std::move(sizes_text), true, false});
+  // Per level (padded: NaN sizes, zero counts beyond a point's own L).
+  const std::size_t P = rows.size(), L = lmax;
+  std::vector<double> sizes(P * L, std::nan(""));
+  std::vector<std::uint64_t> particles(P * L, 0), acc(P * L * L, 0), chk(P * L * L, 0);
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    const Measurement& r = results[i].m;
+    const std::size_t l = r.counts.levels;
+    for (std::size_t h = 0; h < l; ++h) {
+      sizes[i * L + h] = r.sizes[h];
+      particles[i * L + h] = r.counts.particles_per_level[h];
+      for (std::size_t k = 0; k < l; ++k) {
+        acc[(i * L + h) * L + k] = r.counts.accesses_by_level[h * l + k];
+        chk[(i * L + h) * L + k] = r.counts.checks_by_level[h * l + k];
       }
     }
-    detail::h5_write_dataset(f, "sizes", sizes, {P, L});
-    detail::h5_write_dataset(f, "particles_per_level", particles, {P, L});
-    detail::h5_write_dataset(f, "accesses_by_level", acc, {P, L, L});
-    detail::h5_write_dataset(f, "checks_by_level", chk, {P, L, L});
-    detail::H5Handle root{H5Gopen2(f, "/", H5P_DEFAULT), H5Gclose};
-    detail::h5_write_attr(root.id, "scene", scene.name);
-    detail::h5_write_attr(root.id, "description", scene.description);
-    detail::h5_write_attr(root.id, "scale", scene.scale);
-    detail::h5_write_attr(root.id, "scene_toml", scene.source);
-    detail::h5_write_attr(root.id, "cells", std::string(to_string(scene.grid.cells)));
-    detail::h5_write_attr(root.id, "K", std::vector<double>{scene.grid.K});
-    detail::h5_write_attr(root.id, "q", std::vector<double>{scene.grid.q});
-    detail::h5_write_attr(root.id, "levels_requested", std::vector<double>{scene.grid.levels ? *scene.grid.levels : 0.0});
-    for (const auto& [k, v] : provenance_fields()) detail::h5_write_attr(root.id, k, v);
-    detail::h5_write_attr(root.id, "created_utc", utc_now());
-    detail::h5_write_attr(root.id, "matrix_layout", std::string("[point][level of the particle][level searched]"));
-  });
-  write_csv(stem + ".csv", scene, rows);
+  }
+  t.arrays = {{"sizes", std::move(sizes), {P, L}},
+              {"particles_per_level", std::move(particles), {P, L}},
+              {"accesses_by_level", std::move(acc), {P, L, L}},
+              {"checks_by_level", std::move(chk), {P, L, L}}};
+  t.attributes = {{"scene", scene.name},
+                  {"description", scene.description},
+                  {"scale", scene.scale},
+                  {"scene_toml", scene.source},
+                  {"cells", std::string(to_string(scene.grid.cells))},
+                  {"K", std::vector<double>{scene.grid.K}},
+                  {"q", std::vector<double>{scene.grid.q}},
+                  {"levels_requested", std::vector<double>{scene.grid.levels ? *scene.grid.levels : 0.0}}};
+  for (const auto& [k, v] : provenance_fields()) t.attributes.emplace_back(k, v);
+  t.attributes.emplace_back("created_utc", utc_now());
+  t.attributes.emplace_back("matrix_layout", std::string("[point][level of the particle][level searched]"));
+  t.csv_comments = {"scene=" + scene.name + " scale=" + scene.scale + " " + provenance_line()};
+  write_result_table(stem, t);
 }
 
 }  // namespace hgrid
