@@ -38,13 +38,15 @@ class Relaxer {
   using Vec = std::array<double, D>;
 
   Relaxer(const Extent<D>& box, std::vector<double> radii, std::vector<Vec> x, int threads)
-      : box_(box), r_(std::move(radii)), x_(std::move(x)), v_(r_.size()), f_(r_.size()), xref_(r_.size()),
-        threads_(std::max(1, threads)) {}
+      : box_(box), r_(std::move(radii)), rs_(r_.size()), skin2_(r_.size()), x_(std::move(x)), v_(r_.size()),
+        f_(r_.size()), xref_(r_.size()), threads_(std::max(1, threads)) {}
 
   /// Relaxes at scale lambda until the largest relative overlap is below tol.
   /// Returns the FIRE steps used, or budget + 1 if it ran out.
   std::uint64_t relax(double lambda, double tol, std::uint64_t budget, double& max_rel) {
     lambda_ = lambda;
+    for (std::size_t i = 0; i < r_.size(); ++i) rs_[i] = lambda_ * r_[i];
+    set_margins();
     for (auto& v : v_) v.fill(0.0);
     double dt_max = dt_max_, dt = 0.1 * dt_max, alpha = kFireAlpha0;
     int positive = 0;
@@ -95,23 +97,33 @@ class Relaxer {
     }
   }
 
-  /// Has a sphere at x (at xref when the list was built at scale `built`)
-  /// of radius r at scale `lambda` moved or grown through its skin?
-  static bool moved(const Vec& x, const Vec& xref, double r, double lambda, double built, const Extent<D>& box) {
-    const double margin = built * r * (1 + kSkin) - lambda * r;
+  /// skin2_[i]: how far sphere i may move from where the list saw it before
+  /// it must be rebuilt, squared; -1 when its growth alone has used up its
+  /// skin (margin = built r (1 + kSkin) - lambda r <= 0). Set whenever lambda_
+  /// or built_lambda_ changes.
+  void set_margins() {
+    for (std::size_t i = 0; i < r_.size(); ++i) {
+      const double margin = built_lambda_ * r_[i] * (1 + kSkin) - lambda_ * r_[i];
+      skin2_[i] = margin <= 0 ? -1.0 : margin * margin;
+    }
+  }
+
+  /// Has a sphere at x (at xref when the list was built) moved or grown
+  /// through its skin (squared margin skin2)?
+  static bool moved(const Vec& x, const Vec& xref, double skin2, const Extent<D>& box) {
     double d2 = 0;
     for (int k = 0; k < D; ++k) {
       double dx = x[k] - xref[k];
       if constexpr (B == Boundary::periodic) dx = min_image(dx, box[k]);
       d2 += dx * dx;
     }
-    return margin <= 0 || d2 >= margin * margin;
+    return d2 >= skin2;
   }
 
   bool needs_rebuild() const {
     if (start_.empty()) return true;
     for (std::size_t i = 0; i < r_.size(); ++i)
-      if (moved(x_[i], xref_[i], r_[i], lambda_, built_lambda_, box_)) return true;
+      if (moved(x_[i], xref_[i], skin2_[i], box_)) return true;
     return false;
   }
 
@@ -123,8 +135,7 @@ class Relaxer {
     // stores to v_ and x_ could alias members, which would then be reloaded
     // for every sphere (measured: a third of a FIRE step went to this pass).
     const Extent<D> box = box_;
-    const double lambda = lambda_, built = built_lambda_;
-    const double* const r = r_.data();
+    const double* const skin2 = skin2_.data();
     const Vec* const f = f_.data();
     const Vec* const xref = xref_.data();
     Vec* const v = v_.data();
@@ -144,7 +155,7 @@ class Relaxer {
         if constexpr (B == Boundary::periodic) y = wrap(y, box[k]);
         x[i][k] = y;
       }
-      if (!any) any = moved(x[i], xref[i], r[i], lambda, built, box);
+      if (!any) any = moved(x[i], xref[i], skin2[i], box);
     }
     return any;
   }
@@ -152,6 +163,7 @@ class Relaxer {
   void build_list() {
     ++builds_;
     built_lambda_ = lambda_;
+    set_margins();
     const std::size_t n = r_.size();
     std::vector<Sphere<D>> s(n);
     for (std::size_t i = 0; i < n; ++i) {
@@ -211,22 +223,21 @@ class Relaxer {
   /// forces could otherwise alias members, and every pair would reload them.
   struct View {
     const Vec* x;
-    const double* r;
-    double lambda;
+    const double* rs;  // radii at the current scale
     Extent<D> box, half;  // half: box / 2, min_image's bound
   };
 
   View view() const {
-    View w{x_.data(), r_.data(), lambda_, box_, box_};
+    View w{x_.data(), rs_.data(), box_, box_};
     for (int k = 0; k < D; ++k) w.half[k] = 0.5 * box_[k];
     return w;
   }
 
-  /// The pair (i, j), i < j, with xi = x[i], ri = lambda r[i]: false if
+  /// The pair (i, j), i < j, with xi = x[i], ri = rs[i]: false if
   /// they do not push each other; else the force c on j (-c on i). worst:
   /// raised to their relative overlap if they overlap.
   static bool pair_force(const View& w, const Vec& xi, double ri, std::uint32_t j, Vec& c, double& worst) {
-    const double sig = ri + w.lambda * w.r[j];
+    const double sig = ri + w.rs[j];
     Vec dx;
     double d2 = 0;
     for (int k = 0; k < D; ++k) {
@@ -268,14 +279,14 @@ class Relaxer {
       if constexpr (kRanges) {
         for (std::uint32_t x = cross_start_[p]; x < cross_start_[p + 1]; ++x) {
           const std::uint32_t i = cross_i_[x];
-          if (pair_force(w, w.x[i], w.lambda * w.r[i], p, c, unused))
+          if (pair_force(w, w.x[i], w.rs[i], p, c, unused))
             for (int k = 0; k < D; ++k) f[p][k] += c[k];
         }
       }
     }
     for (std::uint32_t i = lo; i < hi; ++i) {
       const Vec xi = w.x[i];
-      const double ri = w.lambda * w.r[i];
+      const double ri = w.rs[i];
       Vec fi = f[i];  // its row alone changes it from here on: the same additions, in a register
       for (std::uint32_t m = start[i]; m < start[i + 1]; ++m) {
         const std::uint32_t j = nbr[m];
@@ -317,7 +328,7 @@ class Relaxer {
   }
 
   Extent<D> box_;
-  std::vector<double> r_;
+  std::vector<double> r_, rs_, skin2_;  // radii; at the current scale; squared skin margins
   std::vector<Vec> x_, v_, f_, xref_;
   std::vector<std::uint32_t> start_, nbr_;
   int threads_ = 1;
