@@ -28,8 +28,8 @@ void write_h5(const std::string& path, const ResultTable& t) {
       std::visit([&](const auto& v) { detail::h5_write_dataset(f, a.name, v, dims); }, a.values);
     }
     const detail::H5Handle root{H5Gopen2(f, "/", H5P_DEFAULT), H5Gclose};
-    for (const auto& [name, value] : t.attributes)
-      std::visit([&](const auto& v) { detail::h5_write_attr(root.id, name, v); }, value);
+    for (const auto& attr : t.attributes)  // (not a structured binding: clang < 16 cannot capture one)
+      std::visit([&](const auto& v) { detail::h5_write_attr(root.id, attr.first, v); }, attr.second);
   });
 }
 
