@@ -105,15 +105,11 @@ class InsertGrid {
 
   /// Stores sphere `id` (ids 0..n-1, each once).
   void insert(std::uint32_t id, const std::array<double, D>& x, double r) {
-    const int l = level_of(r);
-    Level& lv = levels_[l];
-    const std::size_t c = cell_of(lv, x);
     Node& nd = nodes_[id];
     nd.x = x;
     nd.r = r;
-    nd.level = l;
-    nd.next = lv.head[c];
-    lv.head[c] = id;
+    nd.level = level_of(r);
+    link(id);
   }
 
   /// True if (x, r) overlaps (distance < r + r_q) a stored sphere at a level
@@ -128,12 +124,8 @@ class InsertGrid {
   /// radius and level are kept, not recomputed).
   void move(std::uint32_t id, const std::array<double, D>& x) {
     erase(id);
-    Node& nd = nodes_[id];
-    Level& lv = levels_[nd.level];
-    const std::size_t c = cell_of(lv, x);
-    nd.x = x;
-    nd.next = lv.head[c];
-    lv.head[c] = id;
+    nodes_[id].x = x;
+    link(id);
   }
 
   /// Removes sphere id (it must be stored): an O(cell occupancy) unlink.
@@ -175,6 +167,15 @@ class InsertGrid {
     for (int k = D - 1; k >= 0; --k)
       c = c * static_cast<std::size_t>(lv.n[k]) + static_cast<std::size_t>(coord(lv, x[k], k));
     return c;
+  }
+
+  /// Puts stored node id (its position and level set) at the head of its cell's list.
+  void link(std::uint32_t id) {
+    Node& nd = nodes_[id];
+    Level& lv = levels_[nd.level];
+    const std::size_t c = cell_of(lv, nd.x);
+    nd.next = lv.head[c];
+    lv.head[c] = id;
   }
 
   int level_of_raw(double r) const {

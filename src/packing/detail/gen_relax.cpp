@@ -170,7 +170,7 @@ class Relaxer {
       s[i].x = x_[i];
       if constexpr (B == Boundary::walls)
         for (int k = 0; k < D; ++k) s[i].x[k] = std::clamp(s[i].x[k], 0.0, box_[k]);
-      s[i].r = lambda_ * r_[i] * (1 + kSkin);
+      s[i].r = rs_[i] * (1 + kSkin);  // lambda_ r_[i] (1 + kSkin), as rs_ holds lambda_ r_[i]
       xref_[i] = x_[i];
     }
     neighbour_lists<D, B>(std::span<const Sphere<D>>(s), box_, start_, nbr_, threads_);  // sorted: see there
