@@ -64,6 +64,12 @@ class Checkerboard {
     start_.assign(total + 1, 0);
     fill_.assign(total, 0);
     members_.assign(radii.size(), 0);
+    slot_of_.assign(radii.size(), 0);
+    node_.assign(radii.size(), 0);
+    order_.assign(radii.size(), 0);
+    key_.assign(radii.size(), 0);
+    level_.resize(radii.size());
+    for (std::size_t i = 0; i < radii.size(); ++i) level_[i] = grid_.level_of(radii[i]);
     dom_.assign(radii.size(), 0);
     for (std::size_t c = 0; c < total; ++c) {
       std::size_t rest = c;
@@ -89,21 +95,38 @@ class Checkerboard {
     const std::size_t n = radii_.size();
     std::fill(start_.begin(), start_.end(), 0);
     for (std::size_t i = 0; i < n; ++i) {
-      dom_[i] = grid_.domain_of(at(i), radii_[i]);
+      dom_[i] = grid_.domain_at(at(i), level_[i]);
       ++start_[dom_[i] + 1];
     }
     for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
     std::copy(start_.begin(), start_.end() - 1, fill_.begin());
-    // The grid stores particle i under its slot: its place in the domains'
-    // lists (by domain, then by i), so a domain's particles are adjacent in
-    // memory. Slot start_[c] + k is the k-th particle of domain c, as it was
-    // when the grid stored particles by index: the trials and their outcomes
-    // are unchanged.
+    // A trial draws a slot: a particle's place in the domains' lists (by
+    // domain, then by i). Slot start_[c] + k is the k-th particle of domain
+    // c, as it was when the grid stored particles by index and then by slot:
+    // the trials and their outcomes are unchanged.
     for (std::size_t i = 0; i < n; ++i) {
       const std::size_t slot = fill_[dom_[i]]++;
       members_[slot] = static_cast<std::uint32_t>(i);
-      grid_.insert(static_cast<std::uint32_t>(slot), at(i), radii_[i]);
+      slot_of_[i] = static_cast<std::uint32_t>(slot);
     }
+    // The grid stores a particle under its node: its rank in the order of
+    // the cells it is filed under (a counting sort), so the spheres a scan
+    // meets lie near each other in memory. Nodes only place the spheres in
+    // memory: which spheres a test meets, and so every outcome, is the same.
+    const std::size_t keys = grid_.cells();
+    key_start_.assign(keys + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      key_[i] = grid_.key_of(at(i), level_[i]);
+      ++key_start_[key_[i] + 1];
+    }
+    for (std::size_t k = 1; k <= keys; ++k) key_start_[k] += key_start_[k - 1];
+    for (std::size_t i = 0; i < n; ++i) node_[slot_of_[i]] = static_cast<std::uint32_t>(key_start_[key_[i]]++);
+    for (std::size_t slot = 0; slot < n; ++slot) order_[node_[slot]] = static_cast<std::uint32_t>(slot);
+    for (std::size_t nd = 0; nd < n; ++nd) {
+      const std::uint32_t i = members_[order_[nd]];
+      grid_.insert(static_cast<std::uint32_t>(nd), at(i), radii_[i], level_[i]);
+    }
+    update_suspects(threads);
     // The tallies are integer sums: the same in any order.
     std::uint64_t accepted = 0, proposed = 0, swapped = 0, swaps = 0;
     for (const auto& list : by_colour_) {
@@ -121,7 +144,7 @@ class Checkerboard {
     }
     (void)threads;
     for (std::size_t slot = 0; slot < n; ++slot)
-      for (int k = 0; k < D; ++k) pos_[members_[slot] * D + k] = grid_.position(static_cast<std::uint32_t>(slot))[k];
+      for (int k = 0; k < D; ++k) pos_[members_[slot] * D + k] = grid_.position(node_[slot])[k];
     return Tally{accepted, proposed, swapped, swaps};
   }
 
@@ -157,17 +180,54 @@ class Checkerboard {
     return x;
   }
 
+  /// Marks the particles that may overlap another one. A packing made by
+  /// growth + FIRE keeps overlaps up to kFinalOverlapTol; Monte Carlo creates
+  /// none and only removes them, so "overlaps nothing" stays true once true.
+  /// The first sweep tests every particle, later ones only the marked.
+  void update_suspects(int threads) {
+    const std::size_t n = radii_.size();
+    if (!suspects_known_) {
+      suspect_.assign(n, 0);
+      const auto n_end = static_cast<std::int64_t>(n);
+#if defined(_OPENMP)
+#pragma omp parallel for num_threads(threads) schedule(static) if (threads > 1)
+#endif
+      for (std::int64_t s = 0; s < n_end; ++s) {
+        const std::uint32_t nd = node_[static_cast<std::size_t>(s)];
+        suspect_[members_[static_cast<std::size_t>(s)]] = grid_.overlaps(grid_.position(nd), grid_.radius(nd), 0, nd) ? 1 : 0;
+      }
+      (void)threads;
+      for (std::size_t p = 0; p < n; ++p)
+        if (suspect_[p]) suspects_.push_back(static_cast<std::uint32_t>(p));
+      suspects_known_ = true;
+      return;
+    }
+    std::size_t kept = 0;
+    for (const std::uint32_t p : suspects_) {
+      const std::uint32_t nd = node_[slot_of_[p]];
+      if (grid_.overlaps(grid_.position(nd), grid_.radius(nd), 0, nd)) suspects_[kept++] = p;
+      else suspect_[p] = 0;
+    }
+    suspects_.resize(kept);
+  }
+
   /// The particles in slots i and j (both of domain c) exchange positions if
   /// neither then overlaps anything nor leaves c (the two cannot overlap each
-  /// other).
-  bool try_swap(std::uint32_t i, std::uint32_t j, std::size_t c) {
+  /// other). The smaller one needs no test where the larger overlapped
+  /// nothing: every distance there is at least r_large + r_k (in floating
+  /// point too: the sums and squares round monotonically, and dist2 is
+  /// symmetric), so the outcome is the full test's.
+  bool try_swap(std::uint32_t si, std::uint32_t sj, std::size_t c) {
+    const std::uint32_t i = node_[si], j = node_[sj];
     const std::array<double, D> xi = grid_.position(i), xj = grid_.position(j);
     const double ri = grid_.radius(i), rj = grid_.radius(j);
     if (!inside<D, B>(xj, ri, box_) || !inside<D, B>(xi, rj, box_)) return false;
     if (grid_.domain_at(xj, grid_.level(i)) != c || grid_.domain_at(xi, grid_.level(j)) != c) return false;
+    const bool i_fits = ri <= rj && !suspect_[members_[sj]];
+    const bool j_fits = rj <= ri && !suspect_[members_[si]];
     grid_.erase(i);
     grid_.erase(j);
-    const bool ok = !grid_.overlaps(xj, ri, 0) && !grid_.overlaps(xi, rj, 0);
+    const bool ok = (i_fits || !grid_.overlaps(xj, ri, 0)) && (j_fits || !grid_.overlaps(xi, rj, 0));
     grid_.insert(i, ok ? xj : xi, ri);
     grid_.insert(j, ok ? xi : xj, rj);
     return ok;
@@ -180,13 +240,14 @@ class Checkerboard {
     if (count == 0) return t;
     DomainRng rng(seed, c);
     for (std::uint64_t m = 0; m < count; ++m) {
-      const std::uint32_t i = first + static_cast<std::uint32_t>(rng.bits() % count);  // a slot
+      const std::uint32_t si = first + static_cast<std::uint32_t>(rng.bits() % count);  // a slot
       if (rng.uniform() < kSwapFraction) {
-        const std::uint32_t j = first + static_cast<std::uint32_t>(rng.bits() % count);
+        const std::uint32_t sj = first + static_cast<std::uint32_t>(rng.bits() % count);
         ++t.swaps;
-        if (j != i && try_swap(i, j, c)) ++t.swapped;
+        if (sj != si && try_swap(si, sj, c)) ++t.swapped;
         continue;
       }
+      const std::uint32_t i = node_[si];
       const double r = grid_.radius(i);
       std::array<double, D> x = grid_.position(i);
       for (int k = 0; k < D; ++k) {
@@ -210,6 +271,15 @@ class Checkerboard {
   std::array<std::vector<std::uint32_t>, (1u << D)> by_colour_;
   std::vector<std::size_t> start_, fill_, dom_;
   std::vector<std::uint32_t> members_;  // slot -> particle
+  std::vector<std::uint32_t> slot_of_;  // particle -> slot
+  std::vector<std::uint32_t> node_;     // slot -> grid node
+  std::vector<std::uint32_t> order_;    // grid node -> slot
+  std::vector<std::size_t> key_, key_start_;
+  std::vector<int> level_;  // particle -> its grid level
+  // Particles that may overlap another (a superset; see update_suspects).
+  std::vector<char> suspect_;
+  std::vector<std::uint32_t> suspects_;
+  bool suspects_known_ = false;
 };
 
 template <int D, Boundary B>

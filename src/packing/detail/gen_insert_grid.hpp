@@ -42,8 +42,10 @@ class InsertGrid {
     double geo = 1;
     for (int k = 0; k < D; ++k) geo *= box[k];
     geo = std::pow(geo, 1.0 / D);
+    geo_ = geo;
     for (int l = 0; l < L; ++l) {
       Level& lv = levels_[l];
+      lv.count = count[l];
       std::size_t cells = 1;
       for (int k = 0; k < D; ++k) {
         const double by_size = lv.rmax > 0 ? std::floor(box[k] / (2 * lv.rmax)) : 1.0;
@@ -59,16 +61,21 @@ class InsertGrid {
 
   /// The domain layout: `domains[k]` domains of width `width[k]` per axis
   /// (with walls one more than fit the box: the origin shifts them), each
-  /// level with a whole number of cells per domain (at most the cells the
-  /// first layout allows). Cells start at the origin given to reset().
+  /// level with a whole number of cells per domain, as many as fit at least
+  /// the level's largest radius wide (a scan's reach is r + r_max, whatever
+  /// the cell size) and at most kCellsPerParticle per sphere of the level
+  /// over the box. Cells start at the origin given to reset(). (Cells a
+  /// diameter wide, the first layout's, left the largest levels one cell per
+  /// domain: 8-cell lists that every small sphere's scan walked.)
   InsertGrid(const Extent<D>& box, const std::vector<double>& radii, const Extent<D>& width,
              const std::array<std::int64_t, D>& domains)
       : InsertGrid(box, radii) {
     for (Level& lv : levels_) {
       std::size_t cells = 1;
       for (int k = 0; k < D; ++k) {
-        const double by_size = lv.rmax > 0 ? std::floor(width[k] / (2 * lv.rmax)) : 1.0;
-        const double by_count = std::floor(static_cast<double>(lv.n[k]) * width[k] / box[k]);
+        const double by_size = lv.rmax > 0 ? std::floor(width[k] / lv.rmax) : 1.0;
+        const double by_count =
+            std::floor(width[k] / geo_ * std::pow(kCellsPerParticle * static_cast<double>(lv.count) + 1, 1.0 / D));
         lv.m[k] = static_cast<std::int64_t>(std::max(1.0, std::min(by_size, by_count)));
         lv.n[k] = domains[k] * lv.m[k];
         lv.s[k] = width[k] / static_cast<double>(lv.m[k]);
@@ -88,10 +95,8 @@ class InsertGrid {
     }
   }
 
-  /// The domain (per-axis index, linearised) of a sphere of radius r at x:
-  /// the domain of its cell at its own level.
-  std::size_t domain_of(const std::array<double, D>& x, double r) const { return domain_at(x, level_of(r)); }
-  /// The same for a sphere of level l (level_of(r)).
+  /// The domain (per-axis index, linearised) of a sphere of level l
+  /// (level_of of its radius) at x: the domain of its cell at its level.
   std::size_t domain_at(const std::array<double, D>& x, int l) const {
     const Level& lv = levels_[l];
     std::size_t c = 0;
@@ -101,14 +106,30 @@ class InsertGrid {
   }
 
   int levels() const { return static_cast<int>(levels_.size()); }
+  /// Cells of all levels together; key_of numbers them 0 .. cells() - 1,
+  /// level by level, each level's in the order of its cell table.
+  std::size_t cells() const {
+    std::size_t total = 0;
+    for (const Level& lv : levels_) total += lv.head.size();
+    return total;
+  }
+  /// The cell a sphere of level l (level_of of its radius) at x is filed
+  /// under, as a key over all levels.
+  std::size_t key_of(const std::array<double, D>& x, int l) const {
+    std::size_t first = 0;
+    for (int k = 0; k < l; ++k) first += levels_[k].head.size();
+    return first + cell_of(levels_[l], x);
+  }
   int level_of(double r) const { return std::min(levels() - 1, level_of_raw(r)); }
 
   /// Stores sphere `id` (ids 0..n-1, each once).
-  void insert(std::uint32_t id, const std::array<double, D>& x, double r) {
+  void insert(std::uint32_t id, const std::array<double, D>& x, double r) { insert(id, x, r, level_of(r)); }
+  /// The same with its level given (level_of(r)).
+  void insert(std::uint32_t id, const std::array<double, D>& x, double r, int level) {
     Node& nd = nodes_[id];
     nd.x = x;
     nd.r = r;
-    nd.level = level_of(r);
+    nd.level = level;
     link(id);
   }
 
@@ -149,6 +170,7 @@ class InsertGrid {
     std::array<double, D> s{};
     std::array<double, D> o{};        // where cell 0 starts
     double rmax = 0;
+    std::size_t count = 0;  // spheres of the level
     std::vector<std::uint32_t> head;
   };
 
@@ -227,6 +249,7 @@ class InsertGrid {
   }
 
   Extent<D> box_;
+  double geo_ = 1;  // the box's geometric mean side
   double r0_ = 1;
   std::vector<Level> levels_;
   /// A stored sphere and its cell list's next entry, together: a list walk
