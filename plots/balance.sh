@@ -35,7 +35,7 @@ trap 'rm -f "$tmp"' EXIT
   for placement in excluded random; do
     for omega in $omegas; do
       for nu in $nus; do
-        args=$([ "$placement" = excluded ] && echo "$excluded_args" || true)
+        args=$([ "$placement" = excluded ] && excluded_args "$omega" || true)
         # shellcheck disable=SC2086  # args: several options
         f=$("$hgrid" generate --d 3 --n "$n" --nu "$nu" --alpha -3 --omega "$omega" --placement "$placement" $args \
               --seed 1 --cache results/packings --quiet | tail -1)

@@ -20,6 +20,8 @@
 #include "hgridlab/io/packing_file.hpp"
 #include "hgridlab/io/packing_cache.hpp"
 
+#include "killed_run.hpp"
+
 namespace hgrid {
 namespace {
 
@@ -314,16 +316,7 @@ TEST(Generate, ResumedEquilibrationIsTheUninterruptedOne) {
     EXPECT_EQ(resume_mismatch(stage, s), "");
     same(generate_packing(s, &stage));
     // From a checkpoint: one after every sweep, the run killed after the 17th.
-    auto every = s;
-    every.checkpoint_seconds = 0;
-    std::vector<Packing> checkpoints;
-    struct Killed {};
-    EXPECT_THROW(generate_packing(every, nullptr,
-                                  [&](const Packing& c) {
-                                    checkpoints.push_back(c);
-                                    if (checkpoints.size() == 17) throw Killed{};
-                                  }),
-                 Killed);
+    const std::vector<Packing> checkpoints = test::checkpoints_until_killed(s, 17);
     ASSERT_EQ(checkpoints.size(), 17u);
     EXPECT_EQ(equilibration_sweeps_done(checkpoints.back()), 17u);
     same(generate_packing(s, &checkpoints.back()));

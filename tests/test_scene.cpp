@@ -134,6 +134,49 @@ TEST(Scene, EquilibrationSweepsReachThePackings) {
   EXPECT_NE(packing_key(until.points.at(0).packing), packing_key(s.points.at(0).packing));
 }
 
+// [[packings.groups]]: each group is [packings] with some keys replaced;
+// their points follow one another, and a scale's override reaches every group.
+TEST(Scene, GroupsReplaceKeysOfThePackings) {
+  const std::string text = R"(
+name = "t"
+[packings]
+n = 100
+nu = [0.1, 0.2]
+omega = [2, 10, 50]
+placement = ["excluded", "random"]
+equilibrate = true
+moves = "event-chain"
+stop = "stationary"
+stationary_tol = 0.0025
+[[packings.groups]]
+omega = [2, 10]
+method = "growth"
+[[packings.groups]]
+omega = 50
+[scale.smoke.packings]
+nu = 0.3
+)";
+  const Scene s = load_scene(write_scene("groups", text), "default");
+  ASSERT_EQ(s.points.size(), 2u * 2 * 2 + 1u * 2 * 2);
+  EXPECT_DOUBLE_EQ(s.points[0].packing.omega, 2);
+  EXPECT_EQ(s.points[0].packing.method, ExcludedMethod::growth);
+  EXPECT_EQ(s.points[0].packing.moves, EquilibrationMoves::event_chain);
+  EXPECT_DOUBLE_EQ(s.points[0].packing.stationary_tol, 0.0025);
+  EXPECT_DOUBLE_EQ(s.points.back().packing.omega, 50);
+  EXPECT_EQ(s.points[8].packing.method, ExcludedMethod::automatic);
+  for (const auto& pt : s.points)  // random centres are not equilibrated
+    EXPECT_EQ(pt.packing.equilibrate, pt.packing.placement == Placement::excluded);
+  const Scene smoke = load_scene(write_scene("groups", text), "smoke");
+  ASSERT_EQ(smoke.points.size(), 2u * 2 + 1u * 2);
+  for (const auto& pt : smoke.points) EXPECT_DOUBLE_EQ(pt.packing.nu, 0.3);
+  const std::string head = "name = \"t\"\n[packings]\nn = 10\nnu = 0.1\nplacement = \"excluded\"\n";
+  expect_error_naming(head + "groups = 3\n", "packings.groups");
+  expect_error_naming(head + "[[packings.groups]]\ncolour = 1\n", "packings.groups[0].colour");
+  expect_error_naming(head + "stationary_tol = 0.01\n", "packings.stationary_tol");
+  expect_error_naming(head + "moves = \"event-chain\"\n", "packings.moves");
+  expect_error_naming(head + "equilibrate = true\nmoves = \"event-chain\"\nboundary = \"walls\"\n", "packings.moves");
+}
+
 TEST(Scene, KindSelectsTheRunner) {
   EXPECT_EQ(scene_kind(write_scene("kind", kBase)), "contact");
   EXPECT_EQ(scene_kind(std::string(HGRID_SOURCE_DIR) + "/experiments/dpm_free_cooling.toml"), "dpm");

@@ -13,6 +13,8 @@
 #include "hgridlab/packing/generate.hpp"
 #include "hgridlab/packing/identity.hpp"
 
+#include "killed_run.hpp"
+
 namespace hgrid {
 namespace {
 
@@ -146,15 +148,7 @@ TEST(Stationary, StopsOnTheSameChainAndIsExact) {
 TEST(Stationary, ResumedRunTakesTheSameDecision) {
   PackingSpec s = stationary_spec(2, Boundary::periodic, 1);
   const Packing whole = generate_packing(s);
-  s.checkpoint_seconds = 0;
-  std::vector<Packing> checkpoints;
-  struct Killed {};
-  EXPECT_THROW(generate_packing(s, nullptr,
-                                [&](const Packing& c) {
-                                  checkpoints.push_back(c);
-                                  if (checkpoints.size() == 37) throw Killed{};
-                                }),
-               Killed);
+  const std::vector<Packing> checkpoints = test::checkpoints_until_killed(s, 37);
   ASSERT_EQ(checkpoints.size(), 37u);
   EXPECT_EQ(resume_mismatch(checkpoints.back(), s), "");
   const Packing resumed = generate_packing(s, &checkpoints.back());

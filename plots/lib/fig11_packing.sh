@@ -11,8 +11,8 @@ case "$scale" in smoke) n=30000 ;; paper) n=1000000 ;; *) n=100000 ;; esac
 suffix=$([ "$scale" = default ] && echo "" || echo "-$scale")
 mkdir -p results paper_figs results/packings
 source plots/lib/fig11_protocol.sh "$scale"
-# shellcheck disable=SC2086  # excluded_args: several options
-packing=$("$hgrid" generate --n "$n" --nu 0.6 --omega 100 --alpha -3 --placement excluded $excluded_args --seed 1 \
+# shellcheck disable=SC2046  # excluded_args: several options
+packing=$("$hgrid" generate --n "$n" --nu 0.6 --omega 100 --alpha -3 --placement excluded $(excluded_args 100) --seed 1 \
           --cache results/packings --quiet | tail -1)
 
 draw() {

@@ -19,9 +19,10 @@ namespace {
 
 struct GenerateOptions {
   PackingSpec spec;
-  std::string boundary = "periodic", placement = "random", method = "auto", stop = "sweeps", out, cache_dir, from;
+  std::string boundary = "periodic", placement = "random", method = "auto", stop = "sweeps", moves = "metropolis", out, cache_dir,
+      from;
   bool quiet = false;
-  bool sweeps_given = false;
+  bool sweeps_given = false, tol_given = false;
 };
 
 void run_generate(GenerateOptions o) {
@@ -29,11 +30,14 @@ void run_generate(GenerateOptions o) {
   o.spec.placement = parse_placement(o.placement);
   o.spec.method = parse_excluded_method(o.method);
   o.spec.stop = parse_equilibration_stop(o.stop);
+  o.spec.moves = parse_equilibration_moves(o.moves);
   o.spec.progress = !o.quiet;
   if (o.out.empty() == o.cache_dir.empty()) throw InputError("out", "give exactly one of --out FILE and --cache DIR");
   if (o.spec.equilibrate && o.spec.placement != Placement::excluded)
     throw InputError("equilibrate", "only applies to --placement excluded");
   if (o.sweeps_given && !o.spec.equilibrate) throw InputError("sweeps", "only applies with --equilibrate");
+  if (o.tol_given && o.spec.stop != EquilibrationStop::stationary)
+    throw InputError("stationary_tol", "only applies with --stop stationary");
   if (!o.from.empty() && (!o.spec.equilibrate || o.out.empty()))
     throw InputError("from", "only applies with --equilibrate and --out (--cache resumes by itself)");
   Packing p;
@@ -88,6 +92,14 @@ void register_generate_commands(CLI::App& app) {
                   "with --equilibrate: sweeps (run all --sweeps) | stationary (stop as soon as the packing's T/N under "
                   "its optimal Top-Down sizes, K = 0.2, is stationary within its noise; --sweeps is the cap)")
       ->default_val("sweeps");
+  auto* tol = sub->add_option("--stationary-tol", o->spec.stationary_tol,
+                  "with --stop stationary: the largest drift of T/N per doubling of the run, widened by two "
+                  "standard errors, relative to T/N, in (0, 0.1]")
+      ->default_val(kStationaryRelTol);
+  sub->add_option("--moves", o->moves,
+                  "with --equilibrate: metropolis (displacements and swaps, on all cores) | event-chain (event "
+                  "chains along +x, +y, +z and the same swaps; one thread, periodic boxes)")
+      ->default_val("metropolis");
   sub->add_option("--threads", o->spec.threads,
                   "excluded-volume placement: threads of sequential addition, growth + FIRE and --equilibrate's Monte Carlo, 0 = all cores (OMP_NUM_THREADS when set), or 1 to " +
                       std::to_string(kMaxThreads) + "; the packing is the same for any number")
@@ -103,8 +115,9 @@ void register_generate_commands(CLI::App& app) {
                   "at fewer sweeps, or without --equilibrate: its placement) to --sweeps; the result equals the "
                   "uninterrupted run's");
   sub->add_flag("--quiet", o->quiet, "no progress lines");
-  sub->callback([o, sweeps] {
+  sub->callback([o, sweeps, tol] {
     o->sweeps_given = sweeps->count() > 0;
+    o->tol_given = tol->count() > 0;
     run_generate(*o);
   });
   register_info_command(app);

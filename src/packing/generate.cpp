@@ -58,6 +58,10 @@ void check_spec(const PackingSpec& s) {
     throw InputError("method", "only applies to excluded-volume placement");
   if (s.stop != EquilibrationStop::sweeps && !s.equilibrate)
     throw InputError("stop", "only applies to an equilibration (equilibrate)");
+  if (s.moves != EquilibrationMoves::metropolis && !s.equilibrate)
+    throw InputError("moves", "only applies to an equilibration (equilibrate)");
+  if (s.moves == EquilibrationMoves::event_chain && s.boundary != Boundary::periodic)
+    throw InputError("moves", "'event-chain' needs a periodic box (a chain cannot be passed to a wall)");
   if (!(s.stationary_tol > 0 && s.stationary_tol <= 0.1))
     throw InputError("stationary_tol", "must be in (0, 0.1] (got " + brief(s.stationary_tol) + ")");
   check_threads(s.threads);
@@ -158,6 +162,12 @@ ExcludedMethod parse_excluded_method(const std::string& s, const std::string& fi
   if (s == "rsa") return ExcludedMethod::rsa;
   if (s == "growth") return ExcludedMethod::growth;
   throw InputError(field, "must be 'auto', 'rsa' or 'growth' (got '" + s + "')");
+}
+
+EquilibrationMoves parse_equilibration_moves(const std::string& s, const std::string& field) {
+  if (s == "metropolis") return EquilibrationMoves::metropolis;
+  if (s == "event-chain") return EquilibrationMoves::event_chain;
+  throw InputError(field, "must be 'metropolis' or 'event-chain' (got '" + s + "')");
 }
 
 EquilibrationStop parse_equilibration_stop(const std::string& s, const std::string& field) {
@@ -370,8 +380,9 @@ Packing generate_packing(const PackingSpec& s, const Packing* from, const Packin
         describe(c, s, *dist, rcp, at, rng, stop ? &*stop : nullptr);
         checkpoint(c);
       };
-    detail::equilibrate(s.d, s.boundary, p.box, p.radii, p.positions, static_cast<std::uint64_t>(s.sweeps), s.threads,
-                        rng, progress, e, save, s.checkpoint_seconds, observe);
+    detail::equilibrate(s.d, s.boundary, s.moves == EquilibrationMoves::event_chain, p.box, p.radii, p.positions,
+                        static_cast<std::uint64_t>(s.sweeps), s.threads, rng, progress, e, save, s.checkpoint_seconds,
+                        observe);
   }
   if (s.boundary == Boundary::periodic)
     for (std::size_t i = 0; i < p.positions.size(); ++i) p.positions[i] = detail::wrap(p.positions[i], p.box[i % s.d]);

@@ -41,6 +41,17 @@ enum class EquilibrationStop { sweeps, stationary };
 /// "sweeps" | "stationary"; anything else throws InputError naming `field`.
 EquilibrationStop parse_equilibration_stop(const std::string& s, const std::string& field = "stop");
 inline const char* to_string(EquilibrationStop s) { return s == EquilibrationStop::sweeps ? "sweeps" : "stationary"; }
+/// The moves of an equilibration: the checkerboard Metropolis Monte Carlo
+/// (displacements and swaps, on all cores; packing/detail/gen_equilibrate.hpp)
+/// or event chains with the same swaps (one thread, periodic boxes;
+/// packing/detail/gen_event_chain.hpp). Both sample the equilibrium of hard
+/// spheres; they reach it at different costs.
+enum class EquilibrationMoves { metropolis, event_chain };
+/// "metropolis" | "event-chain"; anything else throws InputError naming `field`.
+EquilibrationMoves parse_equilibration_moves(const std::string& s, const std::string& field = "moves");
+inline const char* to_string(EquilibrationMoves m) {
+  return m == EquilibrationMoves::metropolis ? "metropolis" : "event-chain";
+}
 /// The observable of EquilibrationStop::stationary: K and search of its T/N.
 inline constexpr double kStationaryK = 0.2;
 /// Largest drift of T/N per doubling of the run, widened by two standard
@@ -67,6 +78,7 @@ struct PackingSpec {
   bool equilibrate = false;  // excluded only: hard-sphere equilibration after placement
   int sweeps = kDefaultEquilibrationSweeps;  // equilibrate: Monte Carlo sweeps (n trials each); the cap with stop = stationary
   EquilibrationStop stop = EquilibrationStop::sweeps;  // equilibrate: when it ends
+  EquilibrationMoves moves = EquilibrationMoves::metropolis;  // equilibrate: its moves
   double stationary_tol = kStationaryRelTol;  // stop = stationary: the test's tolerance, in (0, 0.1]
   int threads = 0;           // excluded: threads of sequential addition, growth + FIRE and equilibration (base/threads.hpp);
                              // the packing does not depend on it

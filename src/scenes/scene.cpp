@@ -28,7 +28,7 @@ constexpr std::int64_t kMaxSceneParticles = (std::int64_t{1} << 31) - 1;
 
 const detail::SceneSections kSections = {
     {"packings", {"d", "n", "nu", "alpha", "omega", "sigma", "dist", "boundary", "placement", "method", "seeds",
-                  "equilibrate", "sweeps", "stop"}}};
+                  "equilibrate", "sweeps", "stop", "stationary_tol", "moves"}}};
 
 /// The packing lists of a scene, before expansion.
 struct PackingLists {
@@ -40,12 +40,20 @@ struct PackingLists {
   bool sweeps_given = false;
   EquilibrationStop stop = EquilibrationStop::sweeps;
   bool stop_given = false;
+  EquilibrationMoves moves = EquilibrationMoves::metropolis;
+  bool moves_given = false;
+  double stationary_tol = kStationaryRelTol;
+  bool stationary_tol_given = false;
   ExcludedMethod method = ExcludedMethod::automatic;
   bool method_given = false;
 };
 
-void read_packings(const toml::table& t, PackingLists& p, const std::string& where) {
-  check_keys(t, where, kSections.at("packings"));
+/// The keys of t (a [packings] table, a group of it or a scale's override)
+/// into p; `groups`: the table may hold [[packings.groups]] (read apart).
+void read_packings(const toml::table& t, PackingLists& p, const std::string& where, bool groups = false) {
+  auto keys = kSections.at("packings");
+  if (groups) keys.insert("groups");
+  check_keys(t, where, keys);
   for (const auto& [k, v] : t) {
     const std::string key(k.str());
     const std::string name = where + key;
@@ -66,6 +74,14 @@ void read_packings(const toml::table& t, PackingLists& p, const std::string& whe
       auto b = v.value<bool>();
       if (!b) throw InputError(name, "must be true or false");
       p.equilibrate = *b;
+    } else if (key == "stationary_tol") {
+      const auto x = v.value<double>();
+      if (!x || !(*x > 0 && *x <= 0.1)) throw InputError(name, "must be a number in (0, 0.1]");
+      p.stationary_tol = *x;
+      p.stationary_tol_given = true;
+    } else if (key == "moves") {
+      p.moves = parse_equilibration_moves(detail::one_string(v, name), name);
+      p.moves_given = true;
     } else if (key == "stop") {
       p.stop = parse_equilibration_stop(detail::one_string(v, name), name);
       p.stop_given = true;
@@ -83,6 +99,9 @@ void check_lists(const PackingLists& p) {
   if (p.n.empty()) throw InputError("packings.n", "is required (number of particles, >= 1)");
   if (p.sweeps_given && !p.equilibrate) throw InputError("packings.sweeps", "only applies with equilibrate = true");
   if (p.stop_given && !p.equilibrate) throw InputError("packings.stop", "only applies with equilibrate = true");
+  if (p.moves_given && !p.equilibrate) throw InputError("packings.moves", "only applies with equilibrate = true");
+  if (p.stationary_tol_given && p.stop != EquilibrationStop::stationary)
+    throw InputError("packings.stationary_tol", "only applies with stop = \"stationary\"");
   if (p.nu.empty()) throw InputError("packings.nu", "is required (packing fraction, > 0)");
   for (double nu : p.nu)
     if (!(nu > 0 && nu < 1)) throw InputError("packings.nu", "must be in (0, 1)");
@@ -181,17 +200,39 @@ Scene load_scene_text(const std::string& text, const std::string& scale, const s
       throw InputError("name", "may contain only letters, digits, '_' and '-'");
   if (auto v = root["description"].value<std::string>()) s.description = *v;
 
-  PackingLists lists;
   const auto* packings = root["packings"].as_table();
   if (!packings) throw InputError("packings", "a [packings] table is required");
-  read_packings(*packings, lists, "packings.");
-  if (const auto* sp = detail::scale_section(root, scale, "packings", kSections))
-    read_packings(*sp, lists, "scale." + scale + ".packings.");
-  check_lists(lists);
+  PackingLists base;
+  read_packings(*packings, base, "packings.", true);
+  // [[packings.groups]]: parts of the scene that differ from [packings] in
+  // some keys (e.g. a placement method per size ratio); their points follow
+  // one another, group by group. A scale's override applies to every group.
+  std::vector<PackingLists> groups;
+  if (const auto* list = (*packings)["groups"].as_array()) {
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      const std::string where = "packings.groups[" + std::to_string(i) + "].";
+      const auto* t = list->get(i)->as_table();
+      if (!t) throw InputError(where.substr(0, where.size() - 1), "must be a table of [packings] keys");
+      PackingLists g = base;
+      read_packings(*t, g, where);
+      groups.push_back(std::move(g));
+    }
+    if (groups.empty()) throw InputError("packings.groups", "must hold at least one group");
+  } else if ((*packings)["groups"]) {
+    throw InputError("packings.groups", "must be an array of tables ([[packings.groups]])");
+  } else {
+    groups.push_back(base);
+  }
+  for (PackingLists& g : groups) {
+    if (const auto* sp = detail::scale_section(root, scale, "packings", kSections))
+      read_packings(*sp, g, "scale." + scale + ".packings.");
+    check_lists(g);
+  }
   if (const auto* g = root["grid"].as_table()) read_grid(*g, s.grid);
   if (const auto* r = root["record"].as_table()) read_record(*r, s.record);
 
   // Cartesian product, in a fixed order (the order of the result rows).
+  for (const PackingLists& lists : groups)
   for (std::int64_t d : lists.d)
     for (const auto& dist : lists.dist)
       for (const auto& bnd : lists.boundary)
@@ -220,6 +261,8 @@ Scene load_scene_text(const std::string& text, const std::string& scale, const s
                           p.equilibrate = lists.equilibrate;
                           p.sweeps = static_cast<int>(lists.sweeps);
                           p.stop = lists.stop;
+                          p.moves = lists.moves;
+                          p.stationary_tol = lists.stationary_tol;
                         }
                         pt.search = search;
                         s.points.push_back(pt);

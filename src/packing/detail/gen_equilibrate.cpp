@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "hgridlab/base/threads.hpp"
+#include "hgridlab/packing/detail/gen_event_chain.hpp"
 #include "hgridlab/packing/detail/gen_insert_grid.hpp"
 
 namespace hgrid::detail {
@@ -282,14 +283,9 @@ class Checkerboard {
   bool suspects_known_ = false;
 };
 
-template <int D, Boundary B>
-void run(const std::array<double, 3>& box3, const std::vector<double>& radii, std::vector<double>& pos,
-         std::uint64_t target, int threads, GenRng& rng, Progress& progress, Equilibration& e,
-         const EquilibrationCheckpoint& checkpoint, double checkpoint_seconds, const EquilibrationObserver& observe) {
-  Extent<D> box;
-  for (int k = 0; k < D; ++k) box[k] = box3[k];
-  Checkerboard<D, B> board(box, radii, pos);
-  const int T = resolve_threads(threads);
+template <class Sweeper>
+void sweeps(Sweeper& board, std::uint64_t target, int T, GenRng& rng, Progress& progress, Equilibration& e,
+            const EquilibrationCheckpoint& checkpoint, double checkpoint_seconds, const EquilibrationObserver& observe) {
   const std::uint64_t first = e.sweeps;
   double saved = progress.elapsed();
   while (e.sweeps < target) {
@@ -313,14 +309,47 @@ void run(const std::array<double, 3>& box3, const std::vector<double>& radii, st
   }
 }
 
+
+/// The event chains' sweeps as the checkerboard's: an event counts as an
+/// accepted move.
+template <int D>
+class Chains {
+ public:
+  Chains(const Extent<D>& box, const std::vector<double>& radii, std::vector<double>& pos) : ec_(box, radii, pos) {}
+  Tally sweep(GenRng& rng, int) {
+    const ChainTally c = ec_.sweep(rng);
+    return Tally{c.events, c.events, c.swapped, c.swaps};
+  }
+
+ private:
+  EventChain<D> ec_;
+};
+
+template <int D, Boundary B>
+void run(bool event_chain, const std::array<double, 3>& box3, const std::vector<double>& radii,
+         std::vector<double>& pos, std::uint64_t target, int threads, GenRng& rng, Progress& progress,
+         Equilibration& e, const EquilibrationCheckpoint& checkpoint, double checkpoint_seconds,
+         const EquilibrationObserver& observe) {
+  Extent<D> box;
+  for (int k = 0; k < D; ++k) box[k] = box3[k];
+  if constexpr (B == Boundary::periodic)
+    if (event_chain) {
+      Chains<D> chains(box, radii, pos);
+      sweeps(chains, target, 1, rng, progress, e, checkpoint, checkpoint_seconds, observe);
+      return;
+    }
+  Checkerboard<D, B> board(box, radii, pos);
+  sweeps(board, target, resolve_threads(threads), rng, progress, e, checkpoint, checkpoint_seconds, observe);
+}
+
 }  // namespace
 
-void equilibrate(int d, Boundary b, const std::array<double, 3>& box, const std::vector<double>& radii,
+void equilibrate(int d, Boundary b, bool event_chain, const std::array<double, 3>& box, const std::vector<double>& radii,
                  std::vector<double>& pos, std::uint64_t target, int threads, GenRng& rng, Progress& progress,
                  Equilibration& e, const EquilibrationCheckpoint& checkpoint, double checkpoint_seconds,
                  const EquilibrationObserver& observe) {
   const auto go = [&](auto run_one) {
-    run_one(box, radii, pos, target, threads, rng, progress, e, checkpoint, checkpoint_seconds, observe);
+    run_one(event_chain, box, radii, pos, target, threads, rng, progress, e, checkpoint, checkpoint_seconds, observe);
   };
   if (d == 2) {
     if (b == Boundary::walls) go(run<2, Boundary::walls>);

@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "hgridlab/packing/detail/gen_common.hpp"
+#include "hgridlab/packing/detail/gen_relax.hpp"
 #include "hgridlab/grid/geometry.hpp"
 
 namespace hgrid::detail {
@@ -42,6 +43,14 @@ inline constexpr double kMcStep = 0.2;
 /// Share of the trials that are swaps (Ninarello, Berthier & Coslovich,
 /// Phys. Rev. X 7 (2017) 021039, use 0.2).
 inline constexpr double kSwapFraction = 0.2;
+
+/// Event chains (gen_event_chain.hpp) and their swaps move spheres whose radii are this share
+/// smaller than the packing's (2 kFinalOverlapTol): a compressed packing's
+/// pairs overlap by up to kFinalOverlapTol of their contact distance, and
+/// with overlapping pairs a chain can be passed on without moving, around
+/// the box, for ever. The packing's pairs may then overlap by this share;
+/// nu for the chains is (1 - kChainShrink)^d nu (T/N changes by ~10^-4).
+inline constexpr double kChainShrink = 2 * kFinalOverlapTol;
 
 /// Running totals of an equilibration, carried across resumptions (stored
 /// as packing attributes): sweeps done and trials by kind.
@@ -75,7 +84,9 @@ inline constexpr double kDomainMargin = 1e-6;
 /// resumed from a checkpoint's pos, rng state and e is the uninterrupted
 /// run, bit for bit. `threads` as in base/threads.hpp (0 = all cores); the
 /// result does not depend on it.
-void equilibrate(int d, Boundary b, const std::array<double, 3>& box, const std::vector<double>& radii,
+/// event_chain: the moves of gen_event_chain.hpp (periodic only; one thread)
+/// instead of the checkerboard's.
+void equilibrate(int d, Boundary b, bool event_chain, const std::array<double, 3>& box, const std::vector<double>& radii,
                  std::vector<double>& pos, std::uint64_t target, int threads, GenRng& rng, Progress& progress,
                  Equilibration& e, const EquilibrationCheckpoint& checkpoint = {}, double checkpoint_seconds = 300,
                  const EquilibrationObserver& observe = {});

@@ -137,9 +137,57 @@ class InsertGrid {
   /// >= from_level, other than `skip`.
   bool overlaps(const std::array<double, D>& x, double r, int from_level, std::uint32_t skip = kEmpty) const {
     for (int l = from_level; l < levels(); ++l)
-      if (overlaps_level(levels_[l], x, r, skip)) return true;
+      if (overlaps_level(l, x, r, skip)) return true;
     return false;
   }
+
+  /// Calls f(id, position, radius) for every stored sphere of level l filed
+  /// in a cell that meets the box [x + lo, x + hi] (lo <= 0 <= hi per axis;
+  /// periodic: the box shorter than the side, or taken as the whole axis),
+  /// each sphere once; f returns false to stop. A superset of the spheres
+  /// whose centres lie in the box.
+  template <class F>
+  void visit_box(int l, const std::array<double, D>& x, const std::array<double, D>& lo,
+                 const std::array<double, D>& hi, F&& f) const {
+    const Level& lv = levels_[l];
+    if (lv.rmax == 0) return;
+    std::array<std::int64_t, D> first, cnt;
+    for (int k = 0; k < D; ++k) {
+      first[k] = static_cast<std::int64_t>(std::floor((x[k] + lo[k] - lv.o[k]) / lv.s[k]));
+      std::int64_t last = static_cast<std::int64_t>(std::floor((x[k] + hi[k] - lv.o[k]) / lv.s[k]));
+      if constexpr (B == Boundary::walls) {
+        first[k] = std::max<std::int64_t>(first[k], 0);
+        last = std::min<std::int64_t>(last, lv.n[k] - 1);
+      } else if (last - first[k] + 1 >= lv.n[k]) {
+        first[k] = 0;
+        last = lv.n[k] - 1;
+      }
+      cnt[k] = last - first[k] + 1;
+      if (cnt[k] <= 0) return;
+    }
+    std::array<std::int64_t, D> off{};
+    while (true) {
+      std::size_t c = 0;
+      for (int k = D - 1; k >= 0; --k) {
+        std::int64_t i = first[k] + off[k];
+        if constexpr (B == Boundary::periodic) {
+          if (i < 0) i += lv.n[k];
+          else if (i >= lv.n[k]) i -= lv.n[k];
+        }
+        c = c * static_cast<std::size_t>(lv.n[k]) + static_cast<std::size_t>(i);
+      }
+      for (std::uint32_t q = lv.head[c]; q != kEmpty;) {
+        const Node& nd = nodes_[q];
+        if (!f(q, nd.x, nd.r)) return;
+        q = nd.next;
+      }
+      int k = 0;
+      while (k < D && ++off[k] == cnt[k]) off[k++] = 0;
+      if (k == D) break;
+    }
+  }
+  /// The largest radius stored at level l (0 if none).
+  double level_rmax(int l) const { return levels_[l].rmax; }
 
   /// Moves stored sphere id to x (erase, then insert at its own level: its
   /// radius and level are kept, not recomputed).
@@ -205,47 +253,19 @@ class InsertGrid {
     return t <= 0 ? 0 : static_cast<int>(std::floor(t * (1 - 1e-12)));
   }
 
-  bool overlaps_level(const Level& lv, const std::array<double, D>& x, double r, std::uint32_t skip) const {
-    if (lv.rmax == 0) return false;
-    const double beta = r + lv.rmax;
-    std::array<std::int64_t, D> lo, cnt;
-    for (int k = 0; k < D; ++k) {
-      lo[k] = static_cast<std::int64_t>(std::floor((x[k] - beta - lv.o[k]) / lv.s[k]));
-      std::int64_t hi = static_cast<std::int64_t>(std::floor((x[k] + beta - lv.o[k]) / lv.s[k]));
-      if constexpr (B == Boundary::walls) {
-        lo[k] = std::max<std::int64_t>(lo[k], 0);
-        hi = std::min<std::int64_t>(hi, lv.n[k] - 1);
-      } else if (hi - lo[k] + 1 >= lv.n[k]) {
-        lo[k] = 0;
-        hi = lv.n[k] - 1;
-      }
-      cnt[k] = hi - lo[k] + 1;
-      if (cnt[k] <= 0) return false;
-    }
-    std::array<std::int64_t, D> off{};
-    while (true) {
-      std::size_t c = 0;
-      for (int k = D - 1; k >= 0; --k) {
-        std::int64_t i = lo[k] + off[k];
-        if constexpr (B == Boundary::periodic) {
-          if (i < 0) i += lv.n[k];
-          else if (i >= lv.n[k]) i -= lv.n[k];
-        }
-        c = c * static_cast<std::size_t>(lv.n[k]) + static_cast<std::size_t>(i);
-      }
-      for (std::uint32_t q = lv.head[c]; q != kEmpty;) {
-        const Node& nd = nodes_[q];
-        if (q != skip) {
-          const double rs = r + nd.r;
-          if (dist2<D, B>(x, nd.x, box_) < rs * rs) return true;
-        }
-        q = nd.next;
-      }
-      int k = 0;
-      while (k < D && ++off[k] == cnt[k]) off[k++] = 0;
-      if (k == D) break;
-    }
-    return false;
+  bool overlaps_level(int l, const std::array<double, D>& x, double r, std::uint32_t skip) const {
+    const double beta = r + levels_[l].rmax;
+    std::array<double, D> lo, hi;
+    lo.fill(-beta);
+    hi.fill(beta);
+    bool hit = false;
+    visit_box(l, x, lo, hi, [&](std::uint32_t q, const std::array<double, D>& xq, double rq) {
+      if (q == skip) return true;
+      const double rs = r + rq;
+      hit = dist2<D, B>(x, xq, box_) < rs * rs;
+      return !hit;
+    });
+    return hit;
   }
 
   Extent<D> box_;

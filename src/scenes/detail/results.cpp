@@ -52,6 +52,8 @@ nlohmann::json detail::result_to_json(const PointResult& r) {
             {"equilibrate", s.equilibrate},
             {"sweeps", s.sweeps},
             {"stop", to_string(s.stop)},
+            {"moves", to_string(s.moves)},
+            {"stationary_tol", s.stationary_tol},
             {"equilibration_sweeps", r.equilibration_sweeps},
             {"seconds_packing", r.seconds_packing},
             {"seconds_sizes", r.seconds_sizes}});
@@ -125,6 +127,12 @@ PointResult detail::result_from_json(const nlohmann::json& j) {
   // Journals written before an equilibration could stop when stationary have
   // neither: all its sweeps were run.
   if (j.contains("stop")) s.stop = parse_equilibration_stop(text_of(j, "stop"));
+  // Journals written before event chains have the checkerboard's moves.
+  if (j.contains("moves")) s.moves = parse_equilibration_moves(text_of(j, "moves"));
+  if (j.contains("stationary_tol")) {
+    if (!field(j, "stationary_tol").is_number()) throw InputError("stationary_tol", "must be a number");
+    s.stationary_tol = field(j, "stationary_tol").get<double>();
+  }
   if (j.contains("equilibration_sweeps")) {
     r.equilibration_sweeps = count_of(j, "equilibration_sweeps");
     if (r.equilibration_sweeps > (s.equilibrate ? static_cast<std::uint64_t>(s.sweeps) : 0))
