@@ -44,7 +44,8 @@ table() {  # CSV TITLE: one row per excluded-volume point
   echo "for the packing's own radii, packing fraction and the cell sizes used."
   echo "Packing: placed (largest-first sequential addition, growth + FIRE where it"
   echo "stalls) or compressed (sequential addition at nu = 0.35, then growth + FIRE),"
-  echo "then the sweeps of Monte Carlo with swaps; - where the result predates those columns."
+  echo "then the sweeps of Monte Carlo with swaps (figure 11 since 2026-11-29: event chains and swaps;"
+  echo "figure 12: Metropolis moves and swaps; experiments/*.toml); - where the result predates those columns."
   echo "Rendered by plots/model_errors.sh from the result CSVs."
   echo
   table "results/fig11$suffix.csv" "Figure 11 (T/N against nu)"
