@@ -76,7 +76,7 @@ TEST(EventChain, TwoDiscsSampleTheUniformDistribution) { two_spheres_sample_the_
 PackingSpec chain_spec(int d, double nu, ExcludedMethod method) {
   PackingSpec s;
   s.d = d;
-  s.n = d == 3 ? 3000 : 2000;
+  s.n = d == 3 ? 1500 : 1000;
   s.nu = nu;
   s.alpha = -3;
   s.omega = 10;

@@ -7,8 +7,8 @@
 // global balance, not detailed balance (Michel, Kapfer & Krauth, J. Chem.
 // Phys. 140, 054116 (2014)). Between chains, the Metropolis swaps of
 // gen_equilibrate.hpp exchange two particles' positions (they keep the same
-// distribution; Ghimenti, Berthier, Foffi & van Wijland, Phys. Rev. Lett.
-// 132, 028202 (2024), combine the two for size mixtures).
+// distribution; Ghimenti, Berthier & van Wijland, arXiv:2402.06585 (2024),
+// combine chains and swaps for polydisperse discs).
 //
 // One thread (a chain may cross the whole box), periodic boxes only (a wall
 // cannot be lifted to). The insertion grid finds the first sphere met: for
@@ -57,11 +57,16 @@ class EventChain {
     for (double r : radii) r0 = std::min(r0, r);
     reach_ = kEventReach * r0;
     chain_ = chain_length * r0;
-    for (std::size_t i = 0; i < radii.size(); ++i)
-      grid_.insert(static_cast<std::uint32_t>(i), at(i), radii[i] * (1 - kChainShrink));
+    const std::size_t n = radii.size();
+    level_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) level_[i] = grid_.level_of(radii[i] * (1 - kChainShrink));
+    node_of_.assign(n, 0);
+    particle_of_.assign(n, 0);
+    key_.assign(n, 0);
+    file();
     // The chains keep the shrunk spheres apart: they need a start without
     // overlap (else a chain can be passed on for ever without moving).
-    for (std::size_t i = 0; i < radii.size(); ++i) {
+    for (std::size_t i = 0; i < n; ++i) {
       const auto id = static_cast<std::uint32_t>(i);
       if (grid_.overlaps(grid_.position(id), grid_.radius(id), 0, id))
         throw InputError("moves", "'event-chain' needs a packing whose pairs overlap by less than " +
@@ -75,21 +80,22 @@ class EventChain {
   ChainTally sweep(GenRng& rng) {
     ChainTally t;
     const std::size_t n = radii_.size();
+    file();
     const auto swaps = static_cast<std::uint64_t>(std::llround(kSwapFraction * static_cast<double>(n)));
     const std::uint64_t events = n - swaps;
     while (t.events < events) {
       const auto a = static_cast<std::uint32_t>(rng.bits() % n);
       const int k = static_cast<int>(rng.bits() % D);
-      chain(a, k, 2 * rng.uniform() * chain_, t);
+      chain(node_of_[a], k, 2 * rng.uniform() * chain_, t);
     }
     for (std::uint64_t m = 0; m < swaps; ++m) {
       const auto i = static_cast<std::uint32_t>(rng.bits() % n);
       const auto j = static_cast<std::uint32_t>(rng.bits() % n);
       ++t.swaps;
-      if (i != j && try_swap(i, j)) ++t.swapped;
+      if (i != j && try_swap(node_of_[i], node_of_[j])) ++t.swapped;
     }
     for (std::size_t i = 0; i < n; ++i)
-      for (int k = 0; k < D; ++k) pos_[i * D + k] = grid_.position(static_cast<std::uint32_t>(i))[k];
+      for (int k = 0; k < D; ++k) pos_[i * D + k] = grid_.position(node_of_[i])[k];
     return t;
   }
 
@@ -97,6 +103,30 @@ class EventChain {
   static std::vector<double> shrunk(std::vector<double> r) {
     for (double& v : r) v *= 1 - kChainShrink;
     return r;
+  }
+
+  /// Files the particles (positions from pos) in the grid under nodes
+  /// numbered in the order of their cells (a counting sort), so that a
+  /// scan's spheres lie near each other in memory. The chains decide by
+  /// geometry and particle index alone, so the numbering changes nothing.
+  void file() {
+    const std::size_t n = radii_.size(), keys = grid_.cells();
+    start_.assign(keys + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      key_[i] = grid_.key_of(at(i), level_[i]);
+      ++start_[key_[i] + 1];
+    }
+    for (std::size_t c = 1; c <= keys; ++c) start_[c] += start_[c - 1];
+    grid_.reset(Extent<D>{});
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto node = static_cast<std::uint32_t>(start_[key_[i]]++);
+      node_of_[i] = node;
+      particle_of_[node] = static_cast<std::uint32_t>(i);
+    }
+    for (std::size_t node = 0; node < n; ++node) {
+      const std::uint32_t i = particle_of_[node];
+      grid_.insert(static_cast<std::uint32_t>(node), at(i), radii_[i] * (1 - kChainShrink), level_[i]);
+    }
   }
 
   Vec at(std::size_t i) const {
@@ -163,7 +193,7 @@ class EventChain {
         if (h2 <= 0) return true;  // passes beside it
         double s = dk - std::sqrt(h2) - kContactBackoff * sig;
         if (s < 0) s = 0;
-        if (s < best || (s == best && hit != InsertGrid<D, B>::kEmpty && q < hit)) {
+        if (s < best || (s == best && hit != InsertGrid<D, B>::kEmpty && particle_of_[q] < particle_of_[hit])) {
           best = s;
           hit = q;
         }
@@ -191,6 +221,9 @@ class EventChain {
   const std::vector<double>& radii_;
   std::vector<double>& pos_;
   InsertGrid<D, B> grid_;
+  std::vector<int> level_;                             // particle -> grid level
+  std::vector<std::uint32_t> node_of_, particle_of_;   // particle <-> grid node
+  std::vector<std::size_t> key_, start_;               // file()'s counting sort
   double reach_ = 1, chain_ = 20;
 };
 
