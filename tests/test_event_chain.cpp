@@ -49,7 +49,8 @@ void two_spheres_sample_the_uniform_distribution(double ra, double rb, double L)
   detail::GenRng rng(kSeed);
   const double sigma = (ra + rb) * (1 - detail::kChainShrink);
   const auto ball = [](double r) { return D == 3 ? 4.0 / 3.0 * std::numbers::pi * r * r * r : std::numbers::pi * r * r; };
-  const std::array<double, 4> reach{sigma + 0.5, sigma + 1.0, sigma + 1.5, 0.5 * L};
+  const double room = 0.5 * L - sigma;
+  const std::array<double, 4> reach{sigma + 0.25 * room, sigma + 0.5 * room, sigma + 0.75 * room, 0.5 * L};
   std::array<int, 4> inside{};
   double closest = L;
   for (int m = 0; m < kSamples; ++m) {
@@ -72,6 +73,10 @@ void two_spheres_sample_the_uniform_distribution(double ra, double rb, double L)
 
 TEST(EventChain, TwoSpheresSampleTheUniformDistribution) { two_spheres_sample_the_uniform_distribution<3>(1, 2, 10); }
 TEST(EventChain, TwoDiscsSampleTheUniformDistribution) { two_spheres_sample_the_uniform_distribution<2>(1, 1.5, 8); }
+// A box barely wider than 4 r_max (5 radii; an event looks one radius
+// ahead): the sphere ahead may lie over half a box away, and must still be
+// met going forward.
+TEST(EventChain, TwoSpheresInANarrowBox) { two_spheres_sample_the_uniform_distribution<3>(1, 1, 5); }
 
 PackingSpec chain_spec(int d, double nu, ExcludedMethod method) {
   PackingSpec s;

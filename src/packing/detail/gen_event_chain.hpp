@@ -181,13 +181,22 @@ class EventChain {
       hi[k] = best + reach;
       grid_.visit_box(l, xa, lo, hi, [&](std::uint32_t q, const Vec& xq, double rq) {
         if (q == a) return true;
+        // Across the path: the nearest image (the box is at least 4 r_max
+        // wide, so only one lies within r_a + r_q). Along it: the distance
+        // ahead, around the box if need be, so that in a box narrower than
+        // 4 r_max + 2 reach a sphere just over half a box ahead is not taken
+        // for one behind.
         double b2 = 0, dk = 0;
         for (int m = 0; m < D; ++m) {
-          const double dx = min_image(xq[m] - xa[m], box_[m]);
-          if (m == k) dk = dx;
-          else b2 += dx * dx;
+          if (m == k) {
+            dk = xq[m] - xa[m];
+            if (dk < 0) dk += box_[m];
+          } else {
+            const double dx = min_image(xq[m] - xa[m], box_[m]);
+            b2 += dx * dx;
+          }
         }
-        if (dk <= 0) return true;  // behind: moving on only separates them
+        if (dk <= 0) return true;  // level with it: moving on only separates them
         const double sig = ra + rq;
         const double h2 = sig * sig - b2;
         if (h2 <= 0) return true;  // passes beside it
