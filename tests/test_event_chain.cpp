@@ -116,6 +116,7 @@ TEST(EventChain, EquilibratesPackingsWithinItsShrink) {
     EXPECT_NEAR(after.packing_fraction() / nu, 1.0, 1e-12);
     EXPECT_LE(assess_packing(after, nullptr).max_rel_overlap, detail::kChainShrink);
     EXPECT_GT(after.num_attrs.at("equilibration_swap_acceptance"), 0.0);
+    EXPECT_EQ(after.str_attrs.at("equilibration_moves"), "event-chain");
     s.threads = 2;
     EXPECT_EQ(generate_packing(s, &placed).positions, after.positions);
   }

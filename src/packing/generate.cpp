@@ -269,6 +269,7 @@ void describe(Packing& p, const PackingSpec& s, const Distribution& dist, double
     // stopped when stationary is the packing its spec (cap) names.
     if (!(final && s.stop == EquilibrationStop::stationary)) at.sweeps = static_cast<int>(e.sweeps);
     p.str_attrs["equilibration_stop"] = to_string(s.stop);
+    p.str_attrs["equilibration_moves"] = to_string(s.moves);
     if (stop) {
       p.str_attrs[kSeriesAttr] = join_series(stop->series);
       p.num_attrs["stationarity_sample_sweeps"] = detail::kStationarySampleSweeps;

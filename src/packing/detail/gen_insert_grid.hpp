@@ -8,6 +8,9 @@
 // the box is cut into domains at least one largest diameter wide, shifted by
 // an origin, and every level's cells nest in the domains, so a domain's
 // lists are written only by moves of its own particles.
+//
+// visit_box serves the event chains (gen_event_chain.hpp): the spheres of a
+// level filed in the cells a moving sphere's path can reach.
 #pragma once
 #include <algorithm>
 #include <array>
