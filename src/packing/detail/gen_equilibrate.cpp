@@ -68,7 +68,6 @@ class Checkerboard {
     slot_of_.assign(radii.size(), 0);
     node_.assign(radii.size(), 0);
     order_.assign(radii.size(), 0);
-    key_.assign(radii.size(), 0);
     level_.resize(radii.size());
     for (std::size_t i = 0; i < radii.size(); ++i) level_[i] = grid_.level_of(radii[i]);
     dom_.assign(radii.size(), 0);
@@ -114,14 +113,8 @@ class Checkerboard {
     // the cells it is filed under (a counting sort), so the spheres a scan
     // meets lie near each other in memory. Nodes only place the spheres in
     // memory: which spheres a test meets, and so every outcome, is the same.
-    const std::size_t keys = grid_.cells();
-    key_start_.assign(keys + 1, 0);
-    for (std::size_t i = 0; i < n; ++i) {
-      key_[i] = grid_.key_of(at(i), level_[i]);
-      ++key_start_[key_[i] + 1];
-    }
-    for (std::size_t k = 1; k <= keys; ++k) key_start_[k] += key_start_[k - 1];
-    for (std::size_t i = 0; i < n; ++i) node_[slot_of_[i]] = static_cast<std::uint32_t>(key_start_[key_[i]]++);
+    grid_.rank_by_cell(n, [&](std::size_t i) { return at(i); }, level_, rank_);
+    for (std::size_t i = 0; i < n; ++i) node_[slot_of_[i]] = rank_[i];
     for (std::size_t slot = 0; slot < n; ++slot) order_[node_[slot]] = static_cast<std::uint32_t>(slot);
     for (std::size_t nd = 0; nd < n; ++nd) {
       const std::uint32_t i = members_[order_[nd]];
@@ -275,7 +268,7 @@ class Checkerboard {
   std::vector<std::uint32_t> slot_of_;  // particle -> slot
   std::vector<std::uint32_t> node_;     // slot -> grid node
   std::vector<std::uint32_t> order_;    // grid node -> slot
-  std::vector<std::size_t> key_, key_start_;
+  std::vector<std::uint32_t> rank_;    // particle -> grid node (rank_by_cell)
   std::vector<int> level_;  // particle -> its grid level
   // Particles that may overlap another (a superset; see update_suspects).
   std::vector<char> suspect_;

@@ -62,7 +62,6 @@ class EventChain {
     for (std::size_t i = 0; i < n; ++i) level_[i] = grid_.level_of(radii[i] * (1 - kChainShrink));
     node_of_.assign(n, 0);
     particle_of_.assign(n, 0);
-    key_.assign(n, 0);
     file();
     // The chains keep the shrunk spheres apart: they need a start without
     // overlap (else a chain can be passed on for ever without moving).
@@ -110,19 +109,10 @@ class EventChain {
   /// scan's spheres lie near each other in memory. The chains decide by
   /// geometry and particle index alone, so the numbering changes nothing.
   void file() {
-    const std::size_t n = radii_.size(), keys = grid_.cells();
-    start_.assign(keys + 1, 0);
-    for (std::size_t i = 0; i < n; ++i) {
-      key_[i] = grid_.key_of(at(i), level_[i]);
-      ++start_[key_[i] + 1];
-    }
-    for (std::size_t c = 1; c <= keys; ++c) start_[c] += start_[c - 1];
+    const std::size_t n = radii_.size();
+    grid_.rank_by_cell(n, [&](std::size_t i) { return at(i); }, level_, node_of_);
     grid_.reset(Extent<D>{});
-    for (std::size_t i = 0; i < n; ++i) {
-      const auto node = static_cast<std::uint32_t>(start_[key_[i]]++);
-      node_of_[i] = node;
-      particle_of_[node] = static_cast<std::uint32_t>(i);
-    }
+    for (std::size_t i = 0; i < n; ++i) particle_of_[node_of_[i]] = static_cast<std::uint32_t>(i);
     for (std::size_t node = 0; node < n; ++node) {
       const std::uint32_t i = particle_of_[node];
       grid_.insert(static_cast<std::uint32_t>(node), at(i), radii_[i] * (1 - kChainShrink), level_[i]);
@@ -232,7 +222,6 @@ class EventChain {
   InsertGrid<D, B> grid_;
   std::vector<int> level_;                             // particle -> grid level
   std::vector<std::uint32_t> node_of_, particle_of_;   // particle <-> grid node
-  std::vector<std::size_t> key_, start_;               // file()'s counting sort
   double reach_ = 1, chain_ = 20;
 };
 

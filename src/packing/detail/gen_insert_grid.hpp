@@ -109,19 +109,24 @@ class InsertGrid {
   }
 
   int levels() const { return static_cast<int>(levels_.size()); }
-  /// Cells of all levels together; key_of numbers them 0 .. cells() - 1,
-  /// level by level, each level's in the order of its cell table.
-  std::size_t cells() const {
-    std::size_t total = 0;
-    for (const Level& lv : levels_) total += lv.head.size();
-    return total;
-  }
-  /// The cell a sphere of level l (level_of of its radius) at x is filed
-  /// under, as a key over all levels.
-  std::size_t key_of(const std::array<double, D>& x, int l) const {
-    std::size_t first = 0;
-    for (int k = 0; k < l; ++k) first += levels_[k].head.size();
-    return first + cell_of(levels_[l], x);
+  /// Numbers n spheres (sphere i at x_of(i), of level level[i]) in the order
+  /// of the cells they would be filed under, level by level (a counting
+  /// sort; spheres of one cell keep their order): rank[i]. Inserting sphere
+  /// i as node rank[i] puts the spheres a scan meets near each other in
+  /// memory.
+  template <class XOf>
+  void rank_by_cell(std::size_t n, XOf&& x_of, const std::vector<int>& level, std::vector<std::uint32_t>& rank) {
+    std::vector<std::size_t> first(levels_.size() + 1, 0);
+    for (std::size_t l = 0; l < levels_.size(); ++l) first[l + 1] = first[l] + levels_[l].head.size();
+    sort_start_.assign(first.back() + 1, 0);
+    sort_key_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      sort_key_[i] = first[level[i]] + cell_of(levels_[level[i]], x_of(i));
+      ++sort_start_[sort_key_[i] + 1];
+    }
+    for (std::size_t c = 1; c < sort_start_.size(); ++c) sort_start_[c] += sort_start_[c - 1];
+    rank.resize(n);
+    for (std::size_t i = 0; i < n; ++i) rank[i] = static_cast<std::uint32_t>(sort_start_[sort_key_[i]]++);
   }
   int level_of(double r) const { return std::min(levels() - 1, level_of_raw(r)); }
 
@@ -285,6 +290,7 @@ class InsertGrid {
     std::int32_t level = 0;
   };
   std::vector<Node> nodes_;
+  std::vector<std::size_t> sort_key_, sort_start_;  // rank_by_cell's counting sort
 };
 
 }  // namespace hgrid::detail
