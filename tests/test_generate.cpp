@@ -437,7 +437,7 @@ TEST(Generate, GrowthAndFireIsTheSameForAnyThreadCount) {
     const double nu = c.d == 3 ? 0.55 : 0.75, side = std::pow(volume / nu, 1.0 / c.d);
     const std::array<double, 3> box{side, side, c.d == 3 ? side : 0.0};
     for (double& x : pos) x = side * u(rng);  // overlapping at first: FIRE separates them
-    const double scale0 = 0.95;
+    const double scale0 = 0.85;  // nine growth steps of kGrowthStep
     detail::RelaxStats one_stats;
     std::vector<double> one = pos;
     Progress quiet(false, "");
