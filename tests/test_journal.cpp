@@ -124,6 +124,31 @@ TEST_F(Journal, OneRankSweepIsTheSerialRun) {
   EXPECT_TRUE(fs::exists(dir_ / "res1" / "j.csv"));
 }
 
+// Scenes run together in one pool write what each writes alone; a packing
+// two of them share is made once; a scene measured before (its journal)
+// is resumed, not measured again.
+TEST_F(Journal, ScenesInOnePoolAreEachSceneAlone) {
+  const Scene other = load_scene_text(
+      "name = \"k\"\n[packings]\nn = 1500\nnu = [0.3, 0.2]\nomega = 50\nseeds = [2]\n[grid]\nsearch = \"topdown\"\n",
+      "default", "k.toml");
+  const std::vector<PointResult> alone_j = run_scene(scene_, opt_), alone_k = run_scene(other, opt_);
+  opt_.results_dir = (dir_ / "pooled").string();
+  opt_.packing_dir = (dir_ / "pooled_packings").string();
+  opt_.jobs = 2;
+  const auto pooled = run_scenes({scene_, other}, opt_);
+  ASSERT_EQ(pooled.size(), 2u);
+  expect_same_counts(pooled[0], alone_j);
+  expect_same_counts(pooled[1], alone_k);
+  for (const char* f : {"j.csv", "j.h5", "k.csv", "k.h5"}) EXPECT_TRUE(fs::exists(dir_ / "pooled" / f)) << f;
+  EXPECT_TRUE(journal_files(result_stem(scene_, opt_)).empty());
+  // Packings: j's seeds 1 and 2 at nu = 0.3, k's nu = 0.2 (its nu = 0.3 is j's seed 2).
+  std::size_t packings = 0;
+  for (const auto& e : fs::directory_iterator(opt_.packing_dir)) packings += e.path().extension() == ".h5";
+  EXPECT_EQ(packings, 3u);
+  // Two scenes with the same result files are refused.
+  EXPECT_THROW(run_scenes({scene_, scene_}, opt_), InputError);
+}
+
 }  // namespace
 }  // namespace hgrid
 

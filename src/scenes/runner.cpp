@@ -83,22 +83,43 @@ std::vector<std::vector<std::size_t>> group_by_packing(const Scene& scene, const
   return groups;
 }
 
-std::optional<PointFailure> measure_groups(const Scene& scene, const std::vector<std::vector<std::size_t>>& groups,
-                                           const RunOptions& opt, const std::string& journal, const std::string& what,
-                                           std::vector<PointResult>& results) {
+namespace {
+
+/// A point of a pooled run: which scene, which of its points.
+struct PooledPoint {
+  std::size_t scene, point;
+};
+
+/// One scene's place in a pooled run: where its points' results and
+/// journal lines go.
+struct SceneSlot {
+  const Scene* scene;
+  std::string journal;
+  std::vector<PointResult>* results;
+};
+
+/// measure_groups() over the groups of several scenes (a group: the points,
+/// of any of the scenes, of one packing).
+std::optional<PointFailure> measure_pooled(const std::vector<SceneSlot>& slots,
+                                           const std::vector<std::vector<PooledPoint>>& groups,
+                                           const RunOptions& opt, const std::string& what) {
   std::size_t total = 0;
   for (const auto& g : groups) total += g.size();
+  const auto spec_of = [&](const PooledPoint& q) -> const PackingSpec& {
+    return slots[q.scene].scene->points[q.point].packing;
+  };
   // The largest first (stable: ties in scene order).
   std::vector<std::size_t> order(groups.size());
   for (std::size_t g = 0; g < order.size(); ++g) order[g] = g;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return estimated_work(scene.points[groups[a].front()].packing) >
-           estimated_work(scene.points[groups[b].front()].packing);
+    return estimated_work(spec_of(groups[a].front())) > estimated_work(spec_of(groups[b].front()));
   });
   const int jobs = std::max(1, std::min<int>(opt.jobs, static_cast<int>(groups.size())));
   std::atomic<int> running{jobs};  // jobs not yet out of groups: the cores are theirs
   std::mutex mu;
-  JournalWriter jout(journal, scene.source);
+  std::vector<JournalWriter> journals;
+  journals.reserve(slots.size());
+  for (const SceneSlot& s : slots) journals.emplace_back(s.journal, s.scene->source);
   std::atomic<std::size_t> next{0};
   std::size_t finished = 0;
   std::optional<PointFailure> failure;
@@ -110,24 +131,24 @@ std::optional<PointFailure> measure_groups(const Scene& scene, const std::vector
         --running;
         return;
       }
-      const std::size_t g = order[at];
-      for (std::size_t i : groups[g]) {
+      for (const PooledPoint& q : groups[order[at]]) {
         {
           std::lock_guard<std::mutex> lock(mu);
           if (failure) return;
         }
+        const SceneSlot& slot = slots[q.scene];
         try {
           const int threads = std::max(1, resolve_threads(0) / std::max(1, running.load()));
-          PointResult r = run_point(scene, scene.points[i], opt, threads);
+          PointResult r = run_point(*slot.scene, slot.scene->points[q.point], opt, threads);
           std::lock_guard<std::mutex> lock(mu);
-          results[i] = r;
-          jout.append(r);
+          (*slot.results)[q.point] = r;
+          journals[q.scene].append(r);
           ++finished;
           progress.count(static_cast<double>(finished), static_cast<double>(total),
                          std::to_string(finished) + "/" + std::to_string(total));
         } catch (...) {
           std::lock_guard<std::mutex> lock(mu);
-          if (!failure) failure = PointFailure{i, std::current_exception()};
+          if (!failure) failure = PointFailure{q.point, std::current_exception(), q.scene};
           return;
         }
       }
@@ -138,6 +159,58 @@ std::optional<PointFailure> measure_groups(const Scene& scene, const std::vector
   worker();
   for (auto& t : pool) t.join();
   return failure;
+}
+
+}  // namespace
+
+std::optional<PointFailure> measure_groups(const Scene& scene, const std::vector<std::vector<std::size_t>>& groups,
+                                           const RunOptions& opt, const std::string& journal, const std::string& what,
+                                           std::vector<PointResult>& results) {
+  std::vector<std::vector<PooledPoint>> pooled(groups.size());
+  for (std::size_t g = 0; g < groups.size(); ++g)
+    for (std::size_t i : groups[g]) pooled[g].push_back({0, i});
+  return measure_pooled({SceneSlot{&scene, journal, &results}}, pooled, opt, what);
+}
+
+std::vector<std::vector<PointResult>> run_scenes(const std::vector<Scene>& scenes, const RunOptions& opt) {
+  if (scenes.size() == 1) return {run_scene(scenes[0], opt)};
+  std::vector<std::string> stems;
+  for (const Scene& s : scenes) {
+    stems.push_back(result_stem(s, opt));
+    if (std::count(stems.begin(), stems.end(), stems.back()) > 1)
+      throw InputError("SCENE", "two scenes would write the same result files (" + stems.back() + ".h5)");
+  }
+  std::filesystem::create_directories(opt.results_dir);
+  for (const auto& dir : {opt.results_dir, opt.packing_dir}) remove_stale_temporaries(dir, kStaleTemporaryAge);
+  std::vector<Resumed> resumed;
+  for (std::size_t k = 0; k < scenes.size(); ++k) resumed.push_back(resume(scenes[k], stems[k], opt.progress));
+  // One group per packing, across the scenes.
+  std::vector<std::vector<PooledPoint>> groups;
+  std::map<std::string, std::size_t> group_of;
+  for (std::size_t k = 0; k < scenes.size(); ++k)
+    for (std::size_t i : resumed[k].todo) {
+      auto [it, fresh] = group_of.emplace(packing_key(scenes[k].points[i].packing), groups.size());
+      if (fresh) groups.emplace_back();
+      groups[it->second].push_back({k, i});
+    }
+  std::vector<std::vector<PointResult>> measured(scenes.size());
+  std::vector<SceneSlot> slots;
+  std::string what = "hgrid run";
+  for (std::size_t k = 0; k < scenes.size(); ++k) {
+    measured[k].resize(scenes[k].points.size());
+    slots.push_back({&scenes[k], journal_path(stems[k], 0), &measured[k]});
+    what += (k ? "+" : " ") + scenes[k].name;
+  }
+  if (const auto failure = measure_pooled(slots, groups, opt, what))
+    detail::rethrow_naming_point(scenes[failure->scene], *failure);
+  std::vector<std::vector<PointResult>> out;
+  for (std::size_t k = 0; k < scenes.size(); ++k) {
+    for (std::size_t i : resumed[k].todo) resumed[k].results[i] = measured[k][i];
+    write_results(stems[k], scenes[k], resumed[k].results);
+    remove_journals(stems[k]);
+    out.push_back(std::move(resumed[k].results));
+  }
+  return out;
 }
 
 std::vector<PointResult> run_scene(const Scene& scene, const RunOptions& opt) {

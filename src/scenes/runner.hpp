@@ -46,6 +46,14 @@ double estimated_work(const PackingSpec& s);
 /// are reused from its journals (scenes/journal.hpp).
 std::vector<PointResult> run_scene(const Scene& scene, const RunOptions& opt);
 
+/// Several scenes in one process as if each ran alone (the same result
+/// files, journals and resumption), their packings in one pool of opt.jobs
+/// workers: a packing that two scenes share is made once, and no core
+/// waits for one scene's last packing while another scene has work left.
+/// Scenes whose result files would be the same (name and scale) are
+/// refused. Results in the scenes' order.
+std::vector<std::vector<PointResult>> run_scenes(const std::vector<Scene>& scenes, const RunOptions& opt);
+
 /// The points of `todo` (indices into scene.points) by packing, each group
 /// in scene order, the groups in order of their first point: a group goes to
 /// one worker, so that its packing is generated (or read) once.
@@ -55,6 +63,7 @@ std::vector<std::vector<std::size_t>> group_by_packing(const Scene& scene, const
 struct PointFailure {
   std::size_t point;  // index into scene.points
   std::exception_ptr error;
+  std::size_t scene = 0;  // run_scenes: index of the point's scene
 };
 
 /// Measures the points of `groups` into results[i] (sized like
