@@ -36,6 +36,12 @@ namespace hgrid::detail {
 inline constexpr double kChainLength = 20.0;
 /// How far ahead one event looks, in smallest radii.
 inline constexpr double kEventReach = 1.0;
+/// Events of a free flight decided by one scan of the grid (a scan that
+/// long costs about two of one event; docs/PERFORMANCE.md round 25).
+inline constexpr double kFlightEvents = 8.0;
+/// The scans reach this much further (relative), against rounding in the
+/// positions of the events they serve.
+inline constexpr double kScanMargin = 1e-9;
 /// A moving sphere stops this far short of contact (relative to the contact
 /// distance r_i + r_j), far above rounding, so that no move can overlap.
 inline constexpr double kContactBackoff = 1e-12;
@@ -125,28 +131,43 @@ class EventChain {
     return x;
   }
 
-  /// One chain from sphere a along +e_k, of total displacement `length`.
+  /// One chain from sphere a along +e_k, of total displacement `length`, in
+  /// events of at most kEventReach each. The spheres an event may meet are
+  /// those filed in the cells its path can reach; a scan of the grid finds
+  /// them for one event, or, once a sphere has flown an event's length
+  /// without meeting any, for the next kFlightEvents (at omega = 100, nu =
+  /// 0.6 four events in five meet nothing). The events of one scan are
+  /// then decided among the spheres it found, as a scan per event would
+  /// decide them: the same hits and positions, bit for bit.
   void chain(std::uint32_t a, int k, double length, ChainTally& t) {
     double left = length;
     std::uint64_t events = 0, still = 0;  // still: events in a row that moved nothing
+    bool flying = false;                  // a's last event met nothing
     while (left > 0) {
-      ++events;
-      // Each sphere passed the chain on without moving: a ring of pairs in
-      // contact around the box (pairs overlapping by more than kChainShrink).
-      if (still > radii_.size())
-        throw InputError("moves", "'event-chain' is stuck: pairs overlap by more than " +
-                                      std::to_string(kChainShrink) + " of their contact distance");
-      const double seg = std::min(left, reach_);
+      const double ahead = std::min(left, (flying ? kFlightEvents : 1.0) * reach_);
+      scan_path(a, k, ahead);
+      Vec x = grid_.position(a);
+      const Vec x0 = x;
+      double travelled = 0;
       std::uint32_t hit = InsertGrid<D, B>::kEmpty;
-      const double s = first_hit(a, k, seg, hit);
-      still = s > 0 ? 0 : still + 1;
-      if (s > 0) {
-        Vec x = grid_.position(a);
-        x[k] = wrap(x[k] + s, box_[k]);
-        grid_.move(a, x);
+      // The first event always fits: ahead >= min(left, reach_).
+      for (bool first = true; left > 0 && (first || travelled + std::min(left, reach_) <= ahead); first = false) {
+        ++events;
+        // Each sphere passed the chain on without moving: a ring of pairs in
+        // contact around the box (pairs overlapping by more than kChainShrink).
+        if (still > radii_.size())
+          throw InputError("moves", "'event-chain' is stuck: pairs overlap by more than " +
+                                        std::to_string(kChainShrink) + " of their contact distance");
+        const double s = first_hit(x[k], k, std::min(left, reach_), hit);
+        still = s > 0 ? 0 : still + 1;
+        if (s > 0) x[k] = wrap(x[k] + s, box_[k]);
+        travelled += s;
+        left -= s;
+        if (hit != InsertGrid<D, B>::kEmpty) break;
       }
-      left -= s;
-      if (hit != InsertGrid<D, B>::kEmpty) {
+      if (x != x0) grid_.move(a, x);
+      flying = hit == InsertGrid<D, B>::kEmpty;
+      if (!flying) {
         a = hit;
         ++t.lifts;
       }
@@ -154,12 +175,22 @@ class EventChain {
     t.events += events;
   }
 
-  /// How far sphere a moves along +e_k before it meets another (at most
-  /// seg; hit: the sphere met, or kEmpty if none within seg).
-  double first_hit(std::uint32_t a, int k, double seg, std::uint32_t& hit) const {
+  /// A sphere sphere a can meet on its path: it lies across the path
+  /// within contact (the part of the contact distance left along the path,
+  /// root = sqrt(sig^2 - b^2), b its distance from the path line), so a
+  /// meets it where a's coordinate along the path reaches xk - root.
+  struct Ahead {
+    double xk, root, sig;
+    std::uint32_t node;
+  };
+
+  /// Fills ahead_ with the spheres sphere a can meet while it moves up to
+  /// `ahead` along +e_k: for each level, those filed in the cells of the box
+  /// its path reaches, kept if they lie across the path within contact.
+  void scan_path(std::uint32_t a, int k, double ahead) {
+    ahead_.clear();
     const Vec xa = grid_.position(a);
     const double ra = grid_.radius(a);
-    double best = seg;
     Vec lo, hi;
     for (int l = 0; l < grid_.levels(); ++l) {
       const double rl = grid_.level_rmax(l);
@@ -168,36 +199,46 @@ class EventChain {
       lo.fill(-reach);
       hi.fill(reach);
       lo[k] = 0;
-      hi[k] = best + reach;
+      hi[k] = ahead + reach * (1 + kScanMargin);
       grid_.visit_box(l, xa, lo, hi, [&](std::uint32_t q, const Vec& xq, double rq) {
         if (q == a) return true;
         // Across the path: the nearest image (the box is at least 4 r_max
-        // wide, so only one lies within r_a + r_q). Along it: the distance
-        // ahead, around the box if need be, so that in a box narrower than
-        // 4 r_max + 2 reach a sphere just over half a box ahead is not taken
-        // for one behind.
-        double b2 = 0, dk = 0;
+        // wide, so only one lies within r_a + r_q); the same all along it.
+        double b2 = 0;
         for (int m = 0; m < D; ++m) {
-          if (m == k) {
-            dk = xq[m] - xa[m];
-            if (dk < 0) dk += box_[m];
-          } else {
-            const double dx = min_image(xq[m] - xa[m], box_[m]);
-            b2 += dx * dx;
-          }
+          if (m == k) continue;
+          const double dx = min_image(xq[m] - xa[m], box_[m]);
+          b2 += dx * dx;
         }
-        if (dk <= 0) return true;  // level with it: moving on only separates them
         const double sig = ra + rq;
         const double h2 = sig * sig - b2;
         if (h2 <= 0) return true;  // passes beside it
-        double s = dk - std::sqrt(h2) - kContactBackoff * sig;
-        if (s < 0) s = 0;
-        if (s < best || (s == best && hit != InsertGrid<D, B>::kEmpty && particle_of_[q] < particle_of_[hit])) {
-          best = s;
-          hit = q;
-        }
+        ahead_.push_back(Ahead{xq[k], std::sqrt(h2), sig, q});
         return true;
       });
+    }
+  }
+
+  /// How far the sphere at coordinate xk along the path (the path scan_path
+  /// scanned) moves before it meets one of ahead_ (at most seg; hit: the
+  /// sphere met, or kEmpty if none within seg). Ties in the distance go to
+  /// the smaller particle index.
+  double first_hit(double xk, int k, double seg, std::uint32_t& hit) const {
+    double best = seg;
+    hit = InsertGrid<D, B>::kEmpty;
+    for (const Ahead& c : ahead_) {
+      // The distance ahead, around the box if need be, so that in a box
+      // narrower than 4 r_max + 2 reach a sphere just over half a box ahead
+      // is not taken for one behind.
+      double dk = c.xk - xk;
+      if (dk < 0) dk += box_[k];
+      if (dk <= 0) continue;  // level with it: moving on only separates them
+      double s = dk - c.root - kContactBackoff * c.sig;
+      if (s < 0) s = 0;
+      if (s < best || (s == best && hit != InsertGrid<D, B>::kEmpty && particle_of_[c.node] < particle_of_[hit])) {
+        best = s;
+        hit = c.node;
+      }
     }
     return best;
   }
@@ -222,6 +263,7 @@ class EventChain {
   InsertGrid<D, B> grid_;
   std::vector<int> level_;                             // particle -> grid level
   std::vector<std::uint32_t> node_of_, particle_of_;   // particle <-> grid node
+  std::vector<Ahead> ahead_;                           // scan_path's spheres
   double reach_ = 1, chain_ = 20;
 };
 
