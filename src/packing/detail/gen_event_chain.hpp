@@ -249,9 +249,12 @@ class EventChain {
     const double ri = grid_.radius(i), rj = grid_.radius(j);
     grid_.erase(i);
     grid_.erase(j);
-    // The larger one into the smaller one's place first: it fails soonest.
-    const bool ok = ri >= rj ? !grid_.overlaps(xj, ri, 0) && !grid_.overlaps(xi, rj, 0)
-                             : !grid_.overlaps(xi, rj, 0) && !grid_.overlaps(xj, ri, 0);
+    // The larger one into the smaller one's place is the test: the smaller
+    // one in the larger one's place cannot overlap anything, since no pair
+    // overlaps between events (the constructor checks the start; chains stop
+    // short of contact; swaps keep it so), so every other sphere there is at
+    // least its contact distance with the larger radius away.
+    const bool ok = ri >= rj ? !grid_.overlaps(xj, ri, 0) : !grid_.overlaps(xi, rj, 0);
     grid_.insert(i, ok ? xj : xi, ri);
     grid_.insert(j, ok ? xi : xj, rj);
     return ok;
