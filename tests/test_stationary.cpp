@@ -6,9 +6,11 @@
 
 #include <cmath>
 #include <random>
+#include <span>
 #include <vector>
 
 #include "hgridlab/base/error.hpp"
+#include "hgridlab/packing/detail/gen_record.hpp"
 #include "hgridlab/packing/detail/gen_stationary.hpp"
 #include "hgridlab/packing/generate.hpp"
 #include "hgridlab/packing/identity.hpp"
@@ -24,14 +26,15 @@ constexpr double kNuTol = 1e-12;  // achieved nu, relative
 TEST(Stationary, ConstantAndNoisySeriesPass) {
   using detail::kStationaryMinSamples;
   std::vector<double> flat(kStationaryMinSamples - 1, 10.0);
-  EXPECT_FALSE(detail::test_stationary(flat, kStationaryRelTol).stationary) << "fewer samples than the minimum";
+  EXPECT_FALSE(detail::test_stationary(flat, kStationaryRelTol, kStationaryMinSamples).stationary)
+      << "fewer samples than the minimum";
   flat.push_back(10.0);
-  EXPECT_TRUE(detail::test_stationary(flat, kStationaryRelTol).stationary);
+  EXPECT_TRUE(detail::test_stationary(flat, kStationaryRelTol, kStationaryMinSamples).stationary);
   std::mt19937_64 rng(kSeed);  // seeded: white noise of 0.1 % around 10
   std::normal_distribution<double> noise(0.0, 0.01);
   std::vector<double> noisy;
   for (int i = 0; i < 400; ++i) noisy.push_back(10.0 + noise(rng));
-  const auto t = detail::test_stationary(noisy, kStationaryRelTol);
+  const auto t = detail::test_stationary(noisy, kStationaryRelTol, detail::kStationaryMinSamples);
   EXPECT_TRUE(t.stationary) << "drift " << t.drift << ", se " << t.se;
   EXPECT_EQ(t.samples, 200u);
 }
@@ -41,24 +44,24 @@ TEST(Stationary, DriftBeyondNoiseAndToleranceFails) {
   const auto at = [](std::size_t k) { return std::log(static_cast<double>((k + 1) * detail::kStationarySampleSweeps)); };
   std::vector<double> drift;
   for (std::size_t k = 0; k < 400; ++k) drift.push_back(10.0 + 0.02 / std::log(2.0) * at(k));
-  const auto t = detail::test_stationary(drift, kStationaryRelTol);
+  const auto t = detail::test_stationary(drift, kStationaryRelTol, detail::kStationaryMinSamples);
   EXPECT_FALSE(t.stationary);
   EXPECT_NEAR(t.drift, 0.02, 1e-9);
   // 0.02 % per doubling is within the tolerance (0.1 %).
   std::vector<double> slow;
   for (std::size_t k = 0; k < 400; ++k) slow.push_back(10.0 + 0.002 / std::log(2.0) * at(k));
-  EXPECT_TRUE(detail::test_stationary(slow, kStationaryRelTol).stationary);
+  EXPECT_TRUE(detail::test_stationary(slow, kStationaryRelTol, detail::kStationaryMinSamples).stationary);
   // A linear drift of 1 % over the run: 0.5 % over its second half.
   std::vector<double> linear;
   for (std::size_t k = 0; k < 400; ++k) linear.push_back(10.0 * (1 + 1e-2 * static_cast<double>(k) / 400));
-  EXPECT_FALSE(detail::test_stationary(linear, kStationaryRelTol).stationary);
+  EXPECT_FALSE(detail::test_stationary(linear, kStationaryRelTol, detail::kStationaryMinSamples).stationary);
   // Noise hides no drift: 1 % noise around a constant fails (it would need
   // far more samples), where the drift alone is zero.
   std::mt19937_64 rng(kSeed);
   std::normal_distribution<double> noise(0.0, 0.1);
   std::vector<double> noisy;
   for (int i = 0; i < 400; ++i) noisy.push_back(10.0 + noise(rng));
-  EXPECT_FALSE(detail::test_stationary(noisy, kStationaryRelTol).stationary);
+  EXPECT_FALSE(detail::test_stationary(noisy, kStationaryRelTol, detail::kStationaryMinSamples).stationary);
 }
 
 /// Stationary before its cap under a tolerance of 1 % (the figures' 0.1 %
@@ -118,7 +121,7 @@ TEST(Stationary, StopsOnTheSameChainAndIsExact) {
     const PackingSpec s = stationary_spec(d, b, 1);
     const Packing p = generate_packing(s);
     const std::uint64_t done = equilibration_sweeps_done(p);
-    EXPECT_GE(done, detail::kStationaryMinSamples * detail::kStationarySampleSweeps);
+    EXPECT_GE(done, stationary_floor(s) * detail::kStationarySampleSweeps);
     EXPECT_LT(done, 400u) << "should be stationary well before the cap";
     EXPECT_EQ(done % detail::kStationarySampleSweeps, 0u);
     EXPECT_EQ(p.num_attrs.at("stationarity_reached"), 1.0);
@@ -140,6 +143,38 @@ TEST(Stationary, StopsOnTheSameChainAndIsExact) {
       EXPECT_EQ(m.str_attrs.at("stationarity_series"), p.str_attrs.at("stationarity_series"));
     }
   }
+}
+
+// Event chains may stop from their own floor (60 sweeps, not the
+// Metropolis moves' 200): the floor is part of the packing's identity, the
+// decision is the first sample at which the recorded series passes the test
+// with that floor, and the packing is the chain of fixed sweeps cut there.
+TEST(Stationary, EventChainsStopFromTheirOwnFloor) {
+  PackingSpec s = stationary_spec(3, Boundary::periodic, 1);
+  s.moves = EquilibrationMoves::event_chain;
+  ASSERT_EQ(stationary_floor(s), detail::kStationaryMinSamplesEventChain);
+  ASSERT_LT(detail::kStationaryMinSamplesEventChain, detail::kStationaryMinSamples);
+  PackingSpec metropolis = s;
+  metropolis.moves = EquilibrationMoves::metropolis;
+  EXPECT_EQ(stationary_floor(metropolis), detail::kStationaryMinSamples);
+  EXPECT_NE(packing_key(s).find(",min=30)"), std::string::npos) << packing_key(s);
+  EXPECT_NE(packing_key(metropolis).find(",min=100)"), std::string::npos) << packing_key(metropolis);
+  const Packing p = generate_packing(s);
+  const std::uint64_t done = equilibration_sweeps_done(p);
+  EXPECT_EQ(p.num_attrs.at("stationarity_reached"), 1.0);
+  EXPECT_GE(done, detail::kStationaryMinSamplesEventChain * detail::kStationarySampleSweeps);
+  EXPECT_LT(done, detail::kStationaryMinSamples * detail::kStationarySampleSweeps)
+      << "a loose tolerance should pass before the Metropolis floor";
+  const auto series = *detail::recorded_series(p);
+  ASSERT_EQ(series.size(), done / detail::kStationarySampleSweeps);
+  for (std::size_t n = 1; n < series.size(); ++n)
+    EXPECT_FALSE(detail::test_stationary(std::span(series).first(n), s.stationary_tol, stationary_floor(s)).stationary)
+        << "passed at sample " << n;
+  EXPECT_EQ(p.str_attrs.at("stationarity_rule"), detail::stationarity_rule(s.stationary_tol, stationary_floor(s)));
+  PackingSpec fixed = s;
+  fixed.stop = EquilibrationStop::sweeps;
+  fixed.sweeps = static_cast<int>(done);
+  EXPECT_EQ(generate_packing(fixed).positions, p.positions);
 }
 
 // Killed part-way (a checkpoint after every sweep, killed after the 37th:

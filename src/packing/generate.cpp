@@ -276,7 +276,7 @@ void describe(Packing& p, const PackingSpec& s, const Distribution& dist, double
       p.num_attrs["stationarity_rel_tol"] = s.stationary_tol;
       p.num_attrs["stationarity_K"] = kStationaryK;
       p.str_attrs["stationarity_observable"] = "T/N, optimal Top-Down sizes, K = 0.2";
-      p.str_attrs["stationarity_rule"] = detail::stationarity_rule(s.stationary_tol);
+      p.str_attrs["stationarity_rule"] = detail::stationarity_rule(s.stationary_tol, stationary_floor(s));
       p.num_attrs["stationarity_mean"] = stop->last.mean;
       p.num_attrs["stationarity_drift_per_doubling"] = stop->last.drift;
       p.num_attrs["stationarity_drift_se"] = stop->last.se;
@@ -362,7 +362,7 @@ Packing generate_packing(const PackingSpec& s, const Packing* from, const Packin
       observe = [&, count_threads](const detail::Equilibration& at, std::string& extra) {
         if (at.sweeps % detail::kStationarySampleSweeps) return false;
         stop->series.push_back(counted_T_over_N(p, stop->sizes, count_threads));
-        stop->last = detail::test_stationary(stop->series, s.stationary_tol);
+        stop->last = detail::test_stationary(stop->series, s.stationary_tol, stationary_floor(s));
         char buf[96];
         std::snprintf(buf, sizeof buf, ", T/N %.4f, drift/doubling %+.2f %%", stop->series.back(),
                       stop->last.mean > 0 ? 100 * stop->last.drift / stop->last.mean : 0.0);

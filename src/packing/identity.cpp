@@ -23,6 +23,10 @@ using detail::kRngAttr;
 using detail::kTallyAttrs;
 using detail::recorded_series;
 
+std::size_t stationary_floor(const PackingSpec& s) {
+  return detail::stationary_min_samples(s.moves == EquilibrationMoves::event_chain);
+}
+
 std::string packing_key(const PackingSpec& s) {
   std::string k = "hgridlab-packing v" + std::to_string(kGeneratorVersion) + " d=" + std::to_string(s.d) +
                   " n=" + std::to_string(s.n) + " nu=" + format_number(s.nu) + " dist=" + s.dist;
@@ -33,7 +37,7 @@ std::string packing_key(const PackingSpec& s) {
             : std::string()) +
        " seed=" + std::to_string(s.seed) + " equilibrate=" +
        (s.equilibrate ? std::string(s.moves == EquilibrationMoves::event_chain ? "1 event-chain" : "1 checkerboard") +
-                            (s.stop == EquilibrationStop::stationary ? " until=" + detail::stationarity_rule(s.stationary_tol) : std::string()) +
+                            (s.stop == EquilibrationStop::stationary ? " until=" + detail::stationarity_rule(s.stationary_tol, stationary_floor(s)) : std::string()) +
                             " sweeps=" + std::to_string(s.sweeps)
                       : "0");
   return k;
@@ -79,7 +83,7 @@ std::string resume_mismatch(const Packing& from, const PackingSpec& s) {
     const auto series = recorded_series(from);
     if (!series || series->size() != static_cast<std::size_t>(done) / detail::kStationarySampleSweeps)
       return "it records no stationarity series for its sweeps";
-    if (detail::test_stationary(*series, s.stationary_tol).stationary) return "it ended its run (stationary)";
+    if (detail::test_stationary(*series, s.stationary_tol, stationary_floor(s)).stationary) return "it ended its run (stationary)";
   }
   PackingSpec at = s;
   at.sweeps = static_cast<int>(done);

@@ -16,6 +16,10 @@ namespace hgrid {
 /// packing, and the generator version (stored as the "cache_key" attribute).
 std::string packing_key(const PackingSpec& spec);
 
+/// stop = stationary: the fewest samples of T/N before the test may pass,
+/// set by the moves (packing/detail/gen_stationary.hpp); part of the key.
+std::size_t stationary_floor(const PackingSpec& spec);
+
 /// packing_key without the sweeps: the same for every stage of one
 /// equilibration (stored as the "equilibration_chain" attribute).
 std::string equilibration_chain_key(const PackingSpec& spec);

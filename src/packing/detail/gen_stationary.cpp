@@ -6,10 +6,10 @@
 
 namespace hgrid::detail {
 
-Stationarity test_stationary(std::span<const double> series, double rel_tol) {
+Stationarity test_stationary(std::span<const double> series, double rel_tol, std::size_t min_samples) {
   Stationarity t;
   const std::size_t n = series.size();
-  if (n < std::max<std::size_t>(kStationaryMinSamples, 4)) return t;
+  if (n < std::max<std::size_t>(min_samples, 4)) return t;
   const std::size_t first = n / 2, m = n - first;
   // Least squares y = a + b x, x = ln(sweeps).
   double xm = 0, ym = 0;
@@ -46,10 +46,10 @@ Stationarity test_stationary(std::span<const double> series, double rel_tol) {
   return t;
 }
 
-std::string stationarity_rule(double rel_tol) {
+std::string stationarity_rule(double rel_tol, std::size_t min_samples) {
   char buf[96];
   std::snprintf(buf, sizeof buf, "stationary(drift/doubling+2se<=%.17g,every=%d,min=%zu)", rel_tol,
-                kStationarySampleSweeps, kStationaryMinSamples);
+                kStationarySampleSweeps, min_samples);
   return buf;
 }
 
