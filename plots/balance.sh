@@ -39,7 +39,7 @@ trap 'rm -f "$tmp"' EXIT
         # shellcheck disable=SC2086  # args: several options
         f=$("$hgrid" generate --d 3 --n "$n" --nu "$nu" --alpha -3 --omega "$omega" --placement "$placement" $args \
               --seed 1 --cache results/packings --quiet | tail -1)
-        "$hgrid" count "$f" --cells optimal --threads 1 --balance "$threads" --json |
+        "$hgrid" count "$f" --cells optimal --threads 1 --model none --balance "$threads" --json |
           jq -r --arg pl "$placement" --arg w "$omega" --arg nu "$nu" \
             '.balance_cost as $c | .n as $n | .balance[] |
              [$pl, $w, $nu, $n, .threads, .pieces, .imbalance, .largest_piece, $c] | @csv' | tr -d '"'

@@ -213,6 +213,13 @@ TEST_F(Cli, CountReportsTheWallPairsModelAsked) {
   EXPECT_EQ(layer["narrow_phase_checks"], product["narrow_phase_checks"]);
   EXPECT_LT(layer["model_excluded_T_cd_over_N"].get<double>(), product["model_excluded_T_cd_over_N"].get<double>());
   EXPECT_EQ(count(" --wall-pairs layer")["model_excluded_T_over_N"], layer["model_excluded_T_over_N"]);
+  // --model: fewer predictions, the same counts and the same paper's model.
+  const auto paper = count(" --model paper"), none = count(" --model none");
+  for (const auto* j : {&paper, &none}) EXPECT_EQ((*j)["narrow_phase_checks"], layer["narrow_phase_checks"]);
+  EXPECT_EQ(paper["model_T_over_N"], layer["model_T_over_N"]);
+  EXPECT_TRUE(paper["model_excluded_T_over_N"].is_null());
+  EXPECT_TRUE(none["model_T_over_N"].is_null());
+  EXPECT_TRUE(none["model_excluded_T_over_N"].is_null());
 }
 
 TEST_F(Cli, BadInputExitsWithStatus2) {
@@ -224,6 +231,7 @@ TEST_F(Cli, BadInputExitsWithStatus2) {
       {"count " + path("p.csv") + " --sizes 2,abc", "sizes"},
       {"count " + path("p.csv") + " --sizes 2 --search sideways", "search"},
       {"count " + path("p.csv") + " --sizes 2 --wall-pairs kirkwood", "wall-pairs"},
+      {"count " + path("p.csv") + " --sizes 2 --model everything", "model"},
       {"count " + path("neg.csv") + " --sizes 2", "radius"},
       {"count " + path("nothere.h5") + " --sizes 2", "file"},
       {"count " + path("p.csv"), "sizes"},

@@ -38,8 +38,9 @@ BalanceRun balance_of(const Packing& p, const GridParams& g, const std::string& 
 }
 
 void run_count(const GridOptions& o, const std::string& K_text, int repeat, bool as_json,
-               const std::string& balance) {
+               const std::string& balance, const std::string& model) {
   const double K = resolve_K(K_text, "K");
+  const Predictions predictions = parse_predictions(model);
   const WallPairs wall_pairs = parse_wall_pairs(o.wall_pairs);
   if (repeat < 0) throw InputError("repeat", "must be >= 0");
   if (o.decompose) {
@@ -50,7 +51,8 @@ void run_count(const GridOptions& o, const std::string& K_text, int repeat, bool
   const GridParams g = resolve(o, p, K);
   MeasureOptions mo;
   mo.K = K;
-  mo.model = mo.excluded_model = mo.model_progress = true;
+  mo.predict(predictions);
+  mo.model_progress = true;
   mo.wall_pairs = wall_pairs;
   if (!(o.excluded_budget >= 0)) throw InputError("excluded-budget", "must be >= 0 (0: no budget)");
   mo.excluded_work_budget = o.excluded_budget;
@@ -89,6 +91,7 @@ void register_count_commands(CLI::App& app) {
     auto repeat = std::make_shared<int>(0);
     auto js = std::make_shared<bool>(false);
     auto balance = std::make_shared<std::string>();
+    auto model = std::make_shared<std::string>("excluded");
     auto* sub = app.add_subcommand("count", "count cell accesses and narrow-phase checks of one contact search");
     add_grid_options(sub, *o);
     sub->add_option("--K", *K, std::string("for T = checks + K accesses and --cells: ") + kKHelp)
@@ -107,8 +110,12 @@ void register_count_commands(CLI::App& app) {
                     "2D: the most multiply-adds the excluded-volume model's numerical solution may take (6e9: about "
                     "a second on one core; 0: no budget, up to a minute at omega = 50)")
         ->default_val(kDiscWorkPerSecond);
+    sub->add_option("--model", *model,
+                    "predictions beside the counts: excluded (the paper's model and the excluded-volume model), "
+                    "paper (the paper's alone), none")
+        ->default_val("excluded");
     sub->add_flag("--json", *js, "print one JSON object (its fields: `hgrid fields`, docs/MEASUREMENT.md)");
-    sub->callback([o, K, repeat, js, balance] { run_count(*o, *K, *repeat, *js, *balance); });
+    sub->callback([o, K, repeat, js, balance, model] { run_count(*o, *K, *repeat, *js, *balance, *model); });
   }
 }
 

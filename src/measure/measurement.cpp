@@ -144,6 +144,13 @@ void record_counts(Measurement& m, Counters c, double K) {
   m.T_ca_over_N = m.n ? static_cast<double>(m.counts.cell_accesses) / n : 0.0;
 }
 
+Predictions parse_predictions(const std::string& s, const std::string& field) {
+  if (s == "none") return Predictions::none;
+  if (s == "paper") return Predictions::paper;
+  if (s == "excluded") return Predictions::excluded;
+  throw InputError(field, "must be none, paper or excluded (got '" + s + "')");
+}
+
 Measurement measure(const Packing& p, const GridParams& g, const MeasureOptions& o) {
   if (p.size() == 0) throw InputError("packing", "no particles to measure");
   Measurement m;

@@ -27,11 +27,22 @@ struct TimingOptions {
   double min_seconds = 0.2;
 };
 
+/// Which predictions a measurement adds beside its counts: none, the
+/// paper's model (random centres), or the paper's and the excluded-volume
+/// model (hard spheres; the slow one, 1-6 s at N = 10^5 in 3D).
+enum class Predictions { none, paper, excluded };
+/// "none" | "paper" | "excluded"; anything else throws InputError naming `field`.
+Predictions parse_predictions(const std::string& s, const std::string& field = "model");
+
 /// What to measure beside the counts (all off: the counted search alone).
 struct MeasureOptions {
   double K = 0.2;                  // T = narrow-phase checks + K cell accesses (Eq. 27)
   bool model = false;              // the paper's model (random centres) for the sizes used
   bool excluded_model = false;     // with model: the excluded-volume model too (hard spheres)
+  void predict(Predictions p) {
+    model = p != Predictions::none;
+    excluded_model = p == Predictions::excluded;
+  }
   bool model_progress = false;     // a long 2D excluded-volume solution reports on stderr
   double excluded_work_budget = 0;  // 2D: the most multiply-adds of its solution (ExcludedOptions; 0: none)
   WallPairs wall_pairs = WallPairs::depleted_layer;  // walls: the excluded-volume model's pairs near a wall
