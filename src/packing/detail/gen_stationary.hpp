@@ -29,7 +29,7 @@ inline constexpr int kStationarySampleSweeps = 2;
 /// relax over 10^3-10^4 sweeps, so an early quiet stretch proves little.
 inline constexpr std::size_t kStationaryMinSamples = 100;
 /// Event chains: 30 samples (60 sweeps). They push the large particles
-/// from the first sweep (from either start their T/N is within ~0.5 % of
+/// from the first sweep (from either start their T/N is within 0.6 % of
 /// its final value after 20 sweeps) and decorrelate in ~6 sweeps, so 60
 /// sweeps are three times the first and ten times the second; the replay of
 /// every figure packing's recorded series at this floor is in
