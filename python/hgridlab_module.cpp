@@ -131,7 +131,7 @@ py::dict count(const DoubleArray& positions, const DoubleArray& radii, const Dou
   params.threads = check_threads(threads);
   MeasureOptions mo;
   mo.K = K;
-  mo.model = mo.excluded_model = model;
+  mo.predict(model ? Predictions::excluded : Predictions::none);
   mo.excluded_work_budget = excluded_budget;
   Measurement m;
   {
