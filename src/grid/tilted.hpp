@@ -126,22 +126,41 @@ class TiltedHGrid {
 /// The O(N^2) reference for a tilted box: f(i, j), i < j, for every pair
 /// closer than r_i + r_j in some image, trying the 3^d lattice shifts around
 /// the fractional rounding of the displacement (so it does not rest on the
-/// rounding alone). Returns the pairs tested.
+/// rounding alone). Returns the pairs tested. H is upper triangular, so a
+/// shift's last Cartesian component depends on its last lattice coordinate
+/// only, the one before on the last two: a shift whose component alone
+/// reaches r_i + r_j is skipped with those after it (its distance can only be
+/// larger), and the rest get the full test.
 template <int D, class F>
 std::uint64_t brute_force_pairs_tilted(std::span<const Sphere<D>> s, const TiltedBox<D>& box, F&& f) {
   const std::size_t n = s.size();
-  constexpr int kImages = D == 3 ? 27 : 9;
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n; ++j) {
       const auto base = detail::nearest_shift<D>(box, s[i].x, s[j].x);
-      const double sum = s[i].r + s[j].r;
-      for (int m = 0; m < kImages; ++m) {
-        std::array<double, D> shift = base;
-        int q = m;
-        for (int k = 0; k < D; ++k, q /= 3) shift[k] += static_cast<double>(q % 3 - 1);
-        if (detail::tilted_dist2<D>(box, s[i].x, s[j].x, shift) < sum * sum) {
-          f(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
-          break;
+      const double sum = s[i].r + s[j].r, sum2 = sum * sum;
+      std::array<double, D> shift = base;
+      bool hit = false;
+      for (int mz = -1; mz <= 1 && !hit; ++mz) {
+        shift[D - 1] = base[D - 1] + mz;
+        double ez = s[j].x[D - 1] - s[i].x[D - 1];
+        if constexpr (D == 3) ez += box.length[2] * shift[2];
+        else ez += box.length[1] * shift[1];
+        if (ez * ez >= sum2) continue;
+        constexpr int kMid = D == 3 ? 1 : 0;  // in 2D no middle axis: one pass
+        for (int my = -kMid; my <= kMid && !hit; ++my) {
+          if constexpr (D == 3) {
+            shift[1] = base[1] + my;
+            const double ey = s[j].x[1] - s[i].x[1] + (box.length[1] * shift[1] + box.tilt[2] * shift[2]);
+            if (ey * ey >= sum2) continue;
+          }
+          for (int mx = -1; mx <= 1; ++mx) {
+            shift[0] = base[0] + mx;
+            if (detail::tilted_dist2<D>(box, s[i].x, s[j].x, shift) < sum2) {
+              f(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
+              hit = true;
+              break;
+            }
+          }
         }
       }
     }
