@@ -26,27 +26,40 @@ threads=8,64,256
 mkdir -p results results/packings paper_figs
 csv=results/balance$suffix.csv
 tmp=$csv.tmp.$$
-trap 'rm -f "$tmp"' EXIT
+work=$(mktemp -d)
+trap 'rm -rf "$tmp" "$work"' EXIT
+# case_rows PLACEMENT OMEGA NU OUT: one packing's CSV rows into OUT. Counts
+# only (no times), so the cases run side by side, JOBS at a time (default:
+# the cores), each on one thread; the rows are joined in the loops' order.
+case_rows() {
+  local placement=$1 omega=$2 nu=$3 out=$4 args f
+  args=$([ "$placement" = excluded ] && excluded_args "$omega" || true)
+  # shellcheck disable=SC2086  # args: several options
+  f=$("$hgrid" generate --d 3 --n "$n" --nu "$nu" --alpha -3 --omega "$omega" --placement "$placement" $args \
+        --seed 1 --cache results/packings --quiet | tail -1)
+  "$hgrid" count "$f" --cells optimal --threads 1 --model none --balance "$threads" --json |
+    jq -r --arg pl "$placement" --arg w "$omega" --arg nu "$nu" \
+      '.balance_cost as $c | .n as $n | .balance[] |
+       [$pl, $w, $nu, $n, .threads, .pieces, .imbalance, .largest_piece, $c] | @csv' | tr -d '"' > "$out"
+}
+jobs=${JOBS:-$(nproc 2>/dev/null || echo 2)}
+pids=() k=0
+for placement in excluded random; do
+  for omega in $omegas; do
+    for nu in $nus; do
+      case_rows "$placement" "$omega" "$nu" "$work/$(printf %04d $k)" &
+      pids+=($!) k=$((k + 1))
+      if [ "${#pids[@]}" -ge "$jobs" ]; then wait "${pids[0]}"; pids=("${pids[@]:1}"); fi
+    done
+  done
+done
+for p in "${pids[@]}"; do wait "$p"; done
 {
   echo "# simulated load balance of the threaded query (hgrid count --balance $threads): alpha=-3 d=3 periodic n=$n seed=1, optimal Top-Down sizes, K=0.2"
   echo "# imbalance = simulated time / (total work / P) - 1; largest_piece = largest piece / (total work / P)"
   echo "# git_hash=$(git rev-parse --short=12 HEAD 2>/dev/null || echo unknown)"
   echo "placement,omega,nu,n,threads,pieces,imbalance,largest_piece,cost"
-  for placement in excluded random; do
-    for omega in $omegas; do
-      for nu in $nus; do
-        args=$([ "$placement" = excluded ] && excluded_args "$omega" || true)
-        # shellcheck disable=SC2086  # args: several options
-        f=$("$hgrid" generate --d 3 --n "$n" --nu "$nu" --alpha -3 --omega "$omega" --placement "$placement" $args \
-              --seed 1 --cache results/packings --quiet | tail -1)
-        "$hgrid" count "$f" --cells optimal --threads 1 --model none --balance "$threads" --json |
-          jq -r --arg pl "$placement" --arg w "$omega" --arg nu "$nu" \
-            '.balance_cost as $c | .n as $n | .balance[] |
-             [$pl, $w, $nu, $n, .threads, .pieces, .imbalance, .largest_piece, $c] | @csv' | tr -d '"'
-      done
-    done
-    echo "balance: $placement done" >&2
-  done
+  cat "$work"/*
 } > "$tmp"
 mv -f "$tmp" "$csv"
 for fmt in png pdf; do
