@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Load balance of the threaded query beyond this machine, by simulation
-# (`hgrid count --balance`, src/experiment/balance.hpp): for the figure-11
+# (`hgrid count --balance`, src/measure/balance.hpp): for the figure-11
 # packings (3D, periodic, alpha = -3, omega = 2..100, nu = 0.1..0.6, excluded
 # volume as experiments/fig11.toml makes it and random centres; cached under
 # results/packings/), optimal
