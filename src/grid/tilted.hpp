@@ -142,9 +142,9 @@ std::uint64_t brute_force_pairs_tilted(std::span<const Sphere<D>> s, const Tilte
       bool hit = false;
       for (int mz = -1; mz <= 1 && !hit; ++mz) {
         shift[D - 1] = base[D - 1] + mz;
-        double ez = s[j].x[D - 1] - s[i].x[D - 1];
-        if constexpr (D == 3) ez += box.length[2] * shift[2];
-        else ez += box.length[1] * shift[1];
+        // The components as TiltedBox::cartesian and tilted_dist2 form them
+        // (the same expressions, so a skip never drops a pair the full test keeps).
+        const double ez = s[j].x[D - 1] - s[i].x[D - 1] + box.length[D - 1] * shift[D - 1];
         if (ez * ez >= sum2) continue;
         constexpr int kMid = D == 3 ? 1 : 0;  // in 2D no middle axis: one pass
         for (int my = -kMid; my <= kMid && !hit; ++my) {
