@@ -121,6 +121,23 @@ TEST(Distribution, EmpiricalPrefixSumsMatchDirectSums) {
   EXPECT_EQ(e.quantile(1.0), 5.0);
 }
 
+// moments() (the cost model's batch) returns moment()'s values exactly, for
+// the Empirical override (radii found once) and the default loop alike,
+// including empty intervals and an order beyond the prefix sums.
+TEST(Distribution, MomentsBatchEqualsMomentExactly) {
+  const Empirical e(PowerLaw(-3.0, 10.0).sample(1000, 7));
+  const PowerLaw pl(-2.0, 5.0);
+  for (auto [a, b] : {std::pair{0.0, 100.0}, std::pair{1.2, 3.7}, std::pair{2.0, 2.0}, std::pair{4.0, 1.0},
+                      std::pair{0.0, e.r_min()}, std::pair{e.r_max(), 200.0}})
+    for (int kmax : {0, 3, 5}) {
+      double out[6];
+      e.moments(kmax, a, b, out);
+      for (int k = 0; k <= kmax; ++k) EXPECT_EQ(out[k], e.moment(k, a, b)) << "empirical " << k << " " << a << " " << b;
+      pl.moments(kmax, a, b, out);
+      for (int k = 0; k <= kmax; ++k) EXPECT_EQ(out[k], pl.moment(k, a, b)) << "power law " << k << " " << a << " " << b;
+    }
+}
+
 TEST(Distribution, EmpiricalOfASampleApproachesTheLaw) {
   const PowerLaw f(-3.0, 100.0);
   const Empirical e(f.sample(400000, 7));

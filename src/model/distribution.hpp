@@ -32,6 +32,12 @@ class Distribution {
   /// The default integrates pdf() with GSL's adaptive quadrature (QAGS).
   virtual double moment(double k, double a, double b) const;
 
+  /// out[k] = moment(k, a, b) for k = 0..kmax, the same values; Empirical
+  /// finds the interval's radii once for all k (the cost model's inner loop).
+  virtual void moments(int kmax, double a, double b, double* out) const {
+    for (int k = 0; k <= kmax; ++k) out[k] = moment(k, a, b);
+  }
+
   /// Quadrature of r^k pdf(r) over [a, b] regardless of any closed form;
   /// for tests and for subclasses without one.
   double moment_by_quadrature(double k, double a, double b) const;
@@ -103,6 +109,7 @@ class Empirical : public Distribution {
   double cdf(double r) const override;
   double quantile(double u) const override;
   double moment(double k, double a, double b) const override;
+  void moments(int kmax, double a, double b, double* out) const override;
   bool smooth() const override { return false; }
 
  private:

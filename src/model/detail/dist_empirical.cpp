@@ -73,4 +73,17 @@ double Empirical::moment(double k, double a, double b) const {
   return static_cast<double>(s / static_cast<long double>(n));
 }
 
+void Empirical::moments(int kmax, double a, double b, double* out) const {
+  if (kmax > kMaxPrefix) {
+    Distribution::moments(kmax, a, b, out);
+    return;
+  }
+  // moment()'s expressions, with the interval's radii found once.
+  const auto lo = static_cast<std::size_t>(std::upper_bound(r_.begin(), r_.end(), a) - r_.begin());
+  const std::size_t hi = static_cast<std::size_t>(std::upper_bound(r_.begin(), r_.end(), b) - r_.begin());
+  const double n = static_cast<double>(r_.size());
+  for (int k = 0; k <= kmax; ++k)
+    out[k] = hi <= lo ? 0.0 : static_cast<double>((prefix_[k][hi] - prefix_[k][lo]) / static_cast<long double>(n));
+}
+
 }  // namespace hgrid

@@ -38,7 +38,7 @@ void CostModel::fill_levels(const std::vector<double>& s, std::vector<Level>& lv
     const double hi = 0.5 * s[h];
     Level& v = lv[h];
     v.s = s[h];
-    for (int i = 0; i <= p_.d; ++i) v.M[i] = dist_.moment(i, lo, hi);
+    dist_.moments(p_.d, lo, hi, v.M.data());
     v.P = v.M[0];                              // P_h
     v.m = c_ * ipow(v.s, p_.d) * v.P;          // m_h = nu s_h^d P_h / V_p, Eq. (11)
     lo = hi;
