@@ -5,6 +5,7 @@
 // GSL quadrature of pdf() otherwise).
 #pragma once
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 namespace hgrid {
@@ -113,6 +114,11 @@ class Empirical : public Distribution {
   bool smooth() const override { return false; }
 
  private:
+  /// Indices [lo, hi) of the sorted radii in (a, b].
+  std::pair<std::size_t, std::size_t> interval(double a, double b) const;
+  /// integral of r^k f over radii lo..hi-1 from the prefix sums (k <= kMaxPrefix).
+  double prefix_moment(int k, std::size_t lo, std::size_t hi) const;
+
   static constexpr int kMaxPrefix = 4;
   std::vector<double> r_;
   std::vector<long double> prefix_[kMaxPrefix + 1];  // prefix_[k][i] = sum_{<i} r^k

@@ -57,20 +57,26 @@ double Empirical::quantile(double u) const {
   return r_[std::min(idx, r_.size() - 1)];
 }
 
-double Empirical::moment(double k, double a, double b) const {
-  // Radii in (a, b].
+std::pair<std::size_t, std::size_t> Empirical::interval(double a, double b) const {
+  // Radii in (a, b]: indices [lo, hi) of the sorted radii.
   const auto lo = static_cast<std::size_t>(std::upper_bound(r_.begin(), r_.end(), a) - r_.begin());
-  const std::size_t hi = static_cast<std::size_t>(std::upper_bound(r_.begin(), r_.end(), b) - r_.begin());
+  const auto hi = static_cast<std::size_t>(std::upper_bound(r_.begin(), r_.end(), b) - r_.begin());
+  return {lo, hi};
+}
+
+double Empirical::prefix_moment(int k, std::size_t lo, std::size_t hi) const {
   if (hi <= lo) return 0.0;
-  const double n = static_cast<double>(r_.size());
+  return static_cast<double>((prefix_[k][hi] - prefix_[k][lo]) / static_cast<long double>(r_.size()));
+}
+
+double Empirical::moment(double k, double a, double b) const {
+  const auto [lo, hi] = interval(a, b);
+  if (hi <= lo) return 0.0;
   const double kr = std::round(k);
-  if (kr == k && kr >= 0.0 && kr <= kMaxPrefix) {
-    const auto& p = prefix_[static_cast<int>(kr)];
-    return static_cast<double>((p[hi] - p[lo]) / static_cast<long double>(n));
-  }
+  if (kr == k && kr >= 0.0 && kr <= kMaxPrefix) return prefix_moment(static_cast<int>(kr), lo, hi);
   long double s = 0.0L;
   for (std::size_t i = lo; i < hi; ++i) s += std::pow(r_[i], k);
-  return static_cast<double>(s / static_cast<long double>(n));
+  return static_cast<double>(s / static_cast<long double>(r_.size()));
 }
 
 void Empirical::moments(int kmax, double a, double b, double* out) const {
@@ -78,12 +84,8 @@ void Empirical::moments(int kmax, double a, double b, double* out) const {
     Distribution::moments(kmax, a, b, out);
     return;
   }
-  // moment()'s expressions, with the interval's radii found once.
-  const auto lo = static_cast<std::size_t>(std::upper_bound(r_.begin(), r_.end(), a) - r_.begin());
-  const std::size_t hi = static_cast<std::size_t>(std::upper_bound(r_.begin(), r_.end(), b) - r_.begin());
-  const double n = static_cast<double>(r_.size());
-  for (int k = 0; k <= kmax; ++k)
-    out[k] = hi <= lo ? 0.0 : static_cast<double>((prefix_[k][hi] - prefix_[k][lo]) / static_cast<long double>(n));
+  const auto [lo, hi] = interval(a, b);  // once for every k
+  for (int k = 0; k <= kmax; ++k) out[k] = prefix_moment(k, lo, hi);
 }
 
 }  // namespace hgrid
