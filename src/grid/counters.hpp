@@ -74,8 +74,21 @@ struct Counters {
   }
 };
 
-/// Compile-time counting policies for HGrid::query.
-struct Counted { static constexpr bool enabled = true; };
-struct Uncounted { static constexpr bool enabled = false; };
+/// Compile-time counting policies for HGrid::query. `tests`: whether the
+/// candidates are tested (and the overlapping pairs handed to the callback).
+struct Counted {
+  static constexpr bool enabled = true, tests = true;
+};
+struct Uncounted {
+  static constexpr bool enabled = false, tests = true;
+};
+/// The counts alone: every field Counted counts, counted the same, but no
+/// candidate is tested, so the callback is never called and `contacts`
+/// stays 0. The cost T = T_cd + K T_ca (Counters::cost) does not depend on
+/// the tests' outcomes: an observable sampled often (an equilibration's
+/// T/N) gets it for the price of the cell visits.
+struct CountsOnly {
+  static constexpr bool enabled = true, tests = false;
+};
 
 }  // namespace hgrid

@@ -355,6 +355,7 @@ class HGrid {
   /// Same, for sphere sp, handed out as p (a probe's number, or sorted_[p]).
   template <class Count, Boundary TB = B, class E>
   void test(const Sphere<D>& sp, std::uint32_t p, std::uint32_t q, E& e, Counters& out) const {
+    if constexpr (!Count::tests) return;
     if (detail::overlap<D, TB>(sp, sorted_[q], box_)) {
       if constexpr (Count::enabled) ++out.contacts;
       e.buf[e.n++] = {p, q};
@@ -373,6 +374,7 @@ class HGrid {
   template <class Count, Boundary TB = B, class E>
   void test_list(const Sphere<D> sp, std::uint32_t p, const std::uint32_t* cand, std::uint32_t n_cand, E& e,
                  Counters& out) const {
+    if constexpr (!Count::tests) return;
     const Sphere<D>* const s = sorted_.data();
     std::uint32_t n = e.n;
     for (std::uint32_t m = 0; m < n_cand; ++m) {
