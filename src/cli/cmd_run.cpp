@@ -1,14 +1,10 @@
 // hgrid run: scene files -> results/<name>.h5 and .csv each.
 #include <iostream>
 #include <memory>
-#include <thread>
+#include <string>
 #include <vector>
 
 #include "common.hpp"
-#include "hgridlab/scenes/dpm_scene.hpp"
-#include "hgridlab/base/error.hpp"
-#include "hgridlab/scenes/runner.hpp"
-#include "hgridlab/mpi/comm.hpp"
 #include "hgridlab/mpi/sweep.hpp"
 
 namespace hgrid::cli {
@@ -21,43 +17,7 @@ struct RunArgs {
   bool json = false;
 };
 
-void run(const RunArgs& a) {
-  if (a.opt.jobs < 1) throw InputError("jobs", "must be >= 1");
-  const int ranks = mpi::size();
-  const bool lead = mpi::rank() == 0;  // under MPI, rank 0 alone reports
-  if (a.scenes.size() == 1 && scene_kind(a.scenes[0]) == "dpm") {
-    // One simulation, not a sweep of points: nothing to spread over ranks.
-    if (ranks > 1) throw InputError("kind", "a DPM scene (kind = \"dpm\") runs on one process: run it without mpirun");
-    dpm::run_dpm_scene(a.scenes[0], a.scale, a.opt, a.json);
-    return;
-  }
-  std::vector<Scene> scenes;
-  for (const auto& file : a.scenes) {
-    if (scene_kind(file) == "dpm") throw InputError("SCENE", "a DPM scene runs alone (" + file + ")");
-    scenes.push_back(load_scene(file, a.scale));
-    if (lead)
-      std::cerr << "hgrid run: scene " << scenes.back().name << " (" << a.scale << " scale): "
-                << scenes.back().points.size() << " points, " << a.opt.jobs << " job(s)"
-                << (ranks > 1 ? " on each of " + std::to_string(ranks) + " ranks" : "") << "\n";
-  }
-  // Under MPI one scene after the other, each over the ranks; else one pool.
-  std::vector<std::vector<PointResult>> results;
-  if (ranks > 1 || scenes.size() == 1)
-    for (const Scene& s : scenes) results.push_back(mpi::run_scene_on_ranks(s, a.opt));
-  else
-    results = run_scenes(scenes, a.opt);
-  if (!lead) return;
-  for (const Scene& s : scenes) std::cerr << "hgrid run: wrote " << result_stem(s, a.opt) << ".h5 and .csv\n";
-  if (!a.json) return;
-  if (scenes.size() == 1) {
-    std::cout << results_json(scenes[0], results[0], a.opt) << "\n";
-    return;
-  }
-  std::cout << "[\n";
-  for (std::size_t k = 0; k < scenes.size(); ++k)
-    std::cout << results_json(scenes[k], results[k], a.opt) << (k + 1 < scenes.size() ? ",\n" : "\n");
-  std::cout << "]\n";
-}
+void run(const RunArgs& a) { std::cout << mpi::run_scene_files(a.scenes, a.scale, a.opt, a.json); }
 
 }  // namespace
 

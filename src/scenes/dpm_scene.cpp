@@ -134,7 +134,7 @@ std::vector<std::pair<std::string, nlohmann::json>> flatten(const nlohmann::json
 
 }  // namespace
 
-void run_dpm_scene(const std::string& path, const std::string& scale, const RunOptions& opt, bool json) {
+std::string run_dpm_scene(const std::string& path, const std::string& scale, const RunOptions& opt, bool json) {
   const DpmScene sc = load_dpm_scene(path, scale);
   PackingSpec spec = sc.initial;
   spec.progress = opt.progress;
@@ -262,16 +262,16 @@ void run_dpm_scene(const std::string& path, const std::string& scale, const RunO
   }
   write_result_table(stem, t);
 
-  if (json) std::cout << out.dump(2) << "\n";
-  else
-    std::cout << sc.name << " (" << scale << "): speed-up contact detection "
-              << out["speedup_contact_detection"].get<double>() << " (predicted "
-              << out["predicted_speedup_contact_detection"].get<double>()
-              << (out.contains("predicted_speedup_seconds")
-                      ? "; time model " + format_number(out["predicted_speedup_seconds"].get<double>())
-                      : std::string())
-              << "), whole run "
-              << out["speedup_total"].get<double>() << "; results in " << stem << ".h5 and .csv\n";
+  if (json) return out.dump(2) + "\n";
+  std::ostringstream line;
+  line << sc.name << " (" << scale << "): speed-up contact detection "
+       << out["speedup_contact_detection"].get<double>() << " (predicted "
+       << out["predicted_speedup_contact_detection"].get<double>()
+       << (out.contains("predicted_speedup_seconds")
+               ? "; time model " + format_number(out["predicted_speedup_seconds"].get<double>())
+               : std::string())
+       << "), whole run " << out["speedup_total"].get<double>() << "; results in " << stem << ".h5 and .csv\n";
+  return line.str();
 }
 
 }  // namespace hgrid::dpm

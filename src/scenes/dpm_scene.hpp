@@ -6,8 +6,9 @@
 
 namespace hgrid::dpm {
 
-/// Runs a DPM scene at a scale and writes its results; with `json`, prints a
-/// JSON summary on stdout. Throws InputError naming a bad key or value.
-void run_dpm_scene(const std::string& path, const std::string& scale, const RunOptions& opt, bool json);
+/// Runs a DPM scene at a scale and writes its results; returns its summary
+/// for stdout: with `json` as JSON, else one line. Throws InputError naming
+/// a bad key or value.
+std::string run_dpm_scene(const std::string& path, const std::string& scale, const RunOptions& opt, bool json);
 
 }  // namespace hgrid::dpm
