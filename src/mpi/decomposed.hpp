@@ -14,6 +14,7 @@
 #include "hgridlab/grid/counters.hpp"
 #include "hgridlab/grid/geometry.hpp"
 #include "hgridlab/grid/params.hpp"
+#include "hgridlab/measure/measurement.hpp"
 
 namespace hgrid::mpi {
 
@@ -58,5 +59,23 @@ inline constexpr std::uint64_t kRadiiSample = 1000000;
 /// rank 0, in no particular order.
 DecomposedRun decomposed_search(const std::string& file, const GridParams& g, bool counted,
                                 std::vector<std::pair<std::uint64_t, std::uint64_t>>* pairs_on_root);
+
+/// The counted decomposed search as a report (`hgrid count --decompose`):
+/// the one measurement record (measure/measurement.hpp) for the work of
+/// every rank, ghosts' searches included (what decomposing costs), with the
+/// serial grid's model for the radii sample; and the run it came from.
+/// A collective call; the report is filled on rank 0.
+struct DecomposedCount {
+  Measurement m;
+  DecomposedRun run;
+};
+DecomposedCount decomposed_count(const std::string& file, const GridParams& g, double K);
+
+/// The report as JSON: the record's fields a decomposed search fills, then
+/// the decomposition's (box, bricks, ghosts, halo volumes), each phase's
+/// seconds on the slowest rank, memory, and every rank's own report.
+std::string decomposed_count_json(const DecomposedCount& c);
+/// The report as text: one line of parameters, a row per rank, the totals.
+std::string decomposed_count_text(const DecomposedCount& c);
 
 }  // namespace hgrid::mpi
