@@ -9,6 +9,7 @@
 #include "hgridlab/packing/generate.hpp"
 #include "hgridlab/packing/rcp.hpp"
 #include "hgridlab/io/packing_file.hpp"
+#include "hgridlab/io/packing_report.hpp"
 #include "hgridlab/io/particle_file.hpp"
 
 namespace hgrid::cli {
@@ -36,46 +37,7 @@ void run_info(const InfoOptions& o) {
   if (o.d_given) check_file_dimension(p.d, o.spec.d, o.file);
   const auto dist = recorded_distribution(p);
   const PackingQuality q = assess_packing(p, dist.get());
-  nlohmann::json j;
-  j["file"] = o.file;
-  j["n"] = p.size();
-  j["d"] = p.d;
-  j["box"] = std::vector<double>(p.box.begin(), p.box.begin() + p.d);
-  j["tilt"] = p.tilted() ? nlohmann::json(tilt_values(p.tilt, p.d))
-                         : nlohmann::json();
-  j["boundary"] = to_string(p.boundary);
-  j["nu"] = q.nu;
-  j["max_rel_overlap"] = q.max_rel_overlap;
-  j["mean_rel_overlap"] = q.mean_rel_overlap;
-  j["overlapping_pairs"] = q.overlapping_pairs;
-  j["mean_contacts"] = q.mean_contacts;
-  j["contact_gap"] = kContactGap;
-  j["slab_nu"] = q.slab_nu;
-  j["slab_max_rel_dev"] = q.slab_max_dev;
-  j["size_band_slab_max_rel_dev"] = q.band_slab_max_dev;
-  j["slab_counting_noise"] = q.slab_noise;
-  j["size_band_slab_counting_noise"] = q.band_slab_noise;
-  if (dist) {
-    j["ks_distance"] = q.ks_distance;
-    j["ks_pvalue"] = q.ks_pvalue;
-    j["radius_histogram"] = {{"edges", q.hist_edges}, {"count", q.hist_count}, {"expected", q.hist_expected}};
-  }
-  nlohmann::json attrs;
-  for (const auto& [k, v] : p.num_attrs) attrs[k] = v;
-  for (const auto& [k, v] : p.str_attrs) attrs[k] = v;
-  j["attributes"] = attrs;
-  if (o.json) {
-    std::cout << j.dump(2) << "\n";
-    return;
-  }
-  std::cout << o.file << ": n = " << p.size() << ", d = " << p.d << ", " << boundary_description(p) << ", nu = " << q.nu
-            << "\n  max / mean relative overlap: " << q.max_rel_overlap << " / " << q.mean_rel_overlap
-            << "\n  mean contact number: " << q.mean_contacts << "\n  slab nu, worst relative deviation: "
-            << q.slab_max_dev << " (counting noise alone: " << q.slab_noise << ")\n  per size band (equal volume shares):";
-  for (std::size_t b = 0; b < q.band_slab_max_dev.size(); ++b)
-    std::cout << " " << q.band_slab_max_dev[b] << " (noise " << q.band_slab_noise[b] << ")";
-  std::cout << "\n";
-  if (dist) std::cout << "  radii vs pdf: KS distance " << q.ks_distance << ", p = " << q.ks_pvalue << "\n";
+  std::cout << (o.json ? packing_report_json(o.file, p, q, dist != nullptr) : packing_report_text(o.file, p, q, dist != nullptr));
 }
 
 }  // namespace
