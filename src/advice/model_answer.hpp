@@ -40,4 +40,14 @@ struct ModelAnswer {
 /// time model comes from the stored calibration (calibrated_time_model).
 ModelAnswer answer_model(const Distribution& dist, const ModelQuestion& q);
 
+/// The answer as a JSON object (`hgrid model --json` without its "params",
+/// which echo the command's options): levels, sizes, T/N and its parts,
+/// the random-centre T/N beside an excluded-volume one, the predicted
+/// seconds for cost = time, the refinement's before and evaluations, and the
+/// per-level T_cd, P and m.
+std::string model_answer_json(const ModelAnswer& a, const ModelQuestion& q);
+/// The answer as text: L, T/N and its parts, what else was asked, and a
+/// row per level.
+std::string model_answer_text(const ModelAnswer& a, const ModelQuestion& q);
+
 }  // namespace hgrid

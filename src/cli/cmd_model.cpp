@@ -57,50 +57,20 @@ void run_model(const ModelOptions& o) {
   q.n = o.n;
   const auto dist = make_distribution(o, file);
   const ModelAnswer a = answer_model(*dist, q);
-  const ModelResult& m = a.model;
-  if (o.json) {
-    nlohmann::json j;
-    j["levels"] = a.levels;
-    j["sizes"] = a.sizes;
-    j["T_over_N"] = m.T_over_N;
-    j["T_cd_over_N"] = m.T_cd_over_N;
-    j["T_ca_over_N"] = m.T_ca_over_N;
-    if (q.excluded) j["T_over_N_random"] = a.random.T_over_N;
-    if (a.seconds) {
-      j["predicted_seconds_build"] = a.seconds->build;
-      j["predicted_seconds_query"] = a.seconds->query;
-      j["n"] = o.n;
-    }
-    if (o.excluded_sizes) {
-      j["T_over_N_excluded_paper_sizes"] = a.T_over_N_excluded_paper_sizes;
-      j["excluded_size_evaluations"] = a.excluded_size_evaluations;
-    }
-    j["T_cd_per_level"] = m.T_cd;
-    j["P"] = m.P;
-    j["m"] = m.m;
-    const ModelParams& p = q.params;
-    j["params"] = {{"d", p.d}, {"nu", p.nu}, {"K", p.K}, {"search", to_string(p.search)},
-                   {"cells", to_string(q.cells)}, {"q", o.q}, {"omega", dist->omega()},
-                   {"dist", o.radii_file.empty() ? o.dist : "empirical"},
-                   {"levels_searched", o.levels == 0}, {"placement", o.placement}};
-    if (file) j["params"]["nu_source"] = in.nu_from_box ? "box" : "given";
-    if (o.radii_file.empty() && o.dist == "powerlaw") j["params"]["alpha"] = o.alpha;
-    if (o.radii_file.empty() && o.dist == "lognormal") j["params"]["sigma"] = o.sigma;
-    std::cout << j.dump(2) << "\n";
+  if (!o.json) {
+    std::cout << model_answer_text(a, q);
     return;
   }
-  std::printf("levels L = %d (%s)\nT/N = %.6f  (T_cd/N = %.6f, T_ca/N = %.6f, K = %g)%s\n", a.levels,
-              o.levels == 0 ? "best L*" : "given", m.T_over_N, m.T_cd_over_N, m.T_ca_over_N, q.params.K,
-              q.excluded ? "  excluded-volume model" : "");
-  if (a.seconds)
-    std::printf("sizes minimise this machine's predicted seconds for N = %g: build %.4g s + query %.4g s\n", o.n,
-                a.seconds->build, a.seconds->query);
-  if (q.excluded && !o.excluded_sizes) std::printf("random-centre model for the same sizes: T/N = %.6f\n", a.random.T_over_N);
-  if (o.excluded_sizes)
-    std::printf("sizes refined under the excluded-volume model (%d evaluations); with the paper's sizes T/N = %.6f\n",
-                a.excluded_size_evaluations, a.T_over_N_excluded_paper_sizes);
-  std::printf("%5s %14s %12s %12s\n", "h", "s_h/r_min", "P_h", "m_h");
-  for (int h = 0; h < a.levels; ++h) std::printf("%5d %14.6g %12.6g %12.6g\n", h + 1, a.sizes[h], m.P[h], m.m[h]);
+  nlohmann::json j = nlohmann::json::parse(model_answer_json(a, q));
+  const ModelParams& p = q.params;
+  j["params"] = {{"d", p.d}, {"nu", p.nu}, {"K", p.K}, {"search", to_string(p.search)},
+                 {"cells", to_string(q.cells)}, {"q", o.q}, {"omega", dist->omega()},
+                 {"dist", o.radii_file.empty() ? o.dist : "empirical"},
+                 {"levels_searched", o.levels == 0}, {"placement", o.placement}};
+  if (file) j["params"]["nu_source"] = in.nu_from_box ? "box" : "given";
+  if (o.radii_file.empty() && o.dist == "powerlaw") j["params"]["alpha"] = o.alpha;
+  if (o.radii_file.empty() && o.dist == "lognormal") j["params"]["sigma"] = o.sigma;
+  std::cout << j.dump(2) << "\n";
 }
 
 }  // namespace

@@ -2,11 +2,11 @@
 // decomposition's own fields (mpi/decomposed.hpp): what `hgrid count
 // --decompose` prints, built here so that the tool only prints it.
 #include <algorithm>
-#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string_view>
 
 #include "hgridlab/base/threads.hpp"
+#include "hgridlab/base/printf.hpp"
 #include "hgridlab/measure/fields.hpp"
 #include "hgridlab/model/distribution.hpp"
 #include "hgridlab/model/model.hpp"
@@ -18,15 +18,6 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
-/// printf into a std::string (the text report's rows).
-template <class... A>
-std::string format(const char* f, A... a) {
-  const int n = std::snprintf(nullptr, 0, f, a...);
-  std::string s(static_cast<std::size_t>(std::max(n, 0)) + 1, '\0');
-  std::snprintf(s.data(), s.size(), f, a...);
-  s.pop_back();
-  return s;
-}
 
 double shell_over_level_aware(const DecomposedRun& r) {
   return r.ghosts ? static_cast<double>(r.shell_ghosts) / static_cast<double>(r.ghosts) : 0.0;
@@ -110,22 +101,22 @@ std::string decomposed_count_json(const DecomposedCount& c) {
 std::string decomposed_count_text(const DecomposedCount& c) {
   const DecomposedRun& r = c.run;
   const Measurement& m = c.m;
-  std::string out = format("n = %llu, d = %d, %s, nu = %.6g, search %s, K = %g; %zu ranks, bricks",
+  std::string out = printf_string("n = %llu, d = %d, %s, nu = %.6g, search %s, K = %g; %zu ranks, bricks",
                            static_cast<unsigned long long>(r.n), r.d, to_string(r.boundary), r.packing_fraction,
                            to_string(m.search), m.K, r.ranks.size());
-  for (std::size_t a = 0; a < r.bricks.size(); ++a) out += format("%s%d", a ? " x " : " ", r.bricks[a]);
-  out += format("\n%5s %12s %12s %14s %10s %10s %10s\n", "rank", "owned", "ghosts", "shell_ghosts", "exchange_s",
+  for (std::size_t a = 0; a < r.bricks.size(); ++a) out += printf_string("%s%d", a ? " x " : " ", r.bricks[a]);
+  out += printf_string("\n%5s %12s %12s %14s %10s %10s %10s\n", "rank", "owned", "ghosts", "shell_ghosts", "exchange_s",
                 "build_s", "query_s");
   for (const auto& k : r.ranks)
-    out += format("%5d %12llu %12llu %14llu %10.4g %10.4g %10.4g\n", k.rank, static_cast<unsigned long long>(k.owned),
+    out += printf_string("%5d %12llu %12llu %14llu %10.4g %10.4g %10.4g\n", k.rank, static_cast<unsigned long long>(k.owned),
                   static_cast<unsigned long long>(k.ghosts), static_cast<unsigned long long>(k.shell_ghosts),
                   k.seconds_exchange, k.seconds_build, k.seconds_query);
-  out += format("total: %llu cell accesses, %llu narrow-phase checks (all ranks, ghosts included), %llu contacts, "
+  out += printf_string("total: %llu cell accesses, %llu narrow-phase checks (all ranks, ghosts included), %llu contacts, "
                 "T/N = %.6g (model, serial grid: %.6g)\n",
                 static_cast<unsigned long long>(r.work.cell_accesses),
                 static_cast<unsigned long long>(r.work.narrow_phase_checks),
                 static_cast<unsigned long long>(r.work.contacts), m.T_over_N, m.model_T_over_N);
-  out += format("ghosts: %llu level-aware, %llu with a 2 r_max shell (%.3g x); peak memory %.4g bytes per particle\n",
+  out += printf_string("ghosts: %llu level-aware, %llu with a 2 r_max shell (%.3g x); peak memory %.4g bytes per particle\n",
                 static_cast<unsigned long long>(r.ghosts), static_cast<unsigned long long>(r.shell_ghosts),
                 shell_over_level_aware(r), rss_per_particle(r));
   return out;
