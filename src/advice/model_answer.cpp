@@ -71,19 +71,21 @@ std::string model_answer_json(const ModelAnswer& a, const ModelQuestion& q) {
 
 std::string model_answer_text(const ModelAnswer& a, const ModelQuestion& q) {
   const ModelResult& m = a.model;
-  std::string out = printf_string("levels L = %d (%s)\nT/N = %.6f  (T_cd/N = %.6f, T_ca/N = %.6f, K = %g)%s\n", a.levels,
-                           q.levels ? "given" : "best L*", m.T_over_N, m.T_cd_over_N, m.T_ca_over_N, q.params.K,
-                           q.excluded ? "  excluded-volume model" : "");
+  std::string out = printf_string("levels L = %d (%s)\nT/N = %.6f  (T_cd/N = %.6f, T_ca/N = %.6f, K = %g)%s\n",
+                                  a.levels, q.levels ? "given" : "best L*", m.T_over_N, m.T_cd_over_N, m.T_ca_over_N,
+                                  q.params.K, q.excluded ? "  excluded-volume model" : "");
   if (a.seconds)
-    out += printf_string("sizes minimise this machine's predicted seconds for N = %g: build %.4g s + query %.4g s\n", q.n,
-                  a.seconds->build, a.seconds->query);
+    out += printf_string("sizes minimise this machine's predicted seconds for N = %g: build %.4g s + query %.4g s\n",
+                         q.n, a.seconds->build, a.seconds->query);
   if (q.excluded && !q.excluded_sizes)
     out += printf_string("random-centre model for the same sizes: T/N = %.6f\n", a.random.T_over_N);
   if (q.excluded_sizes)
-    out += printf_string("sizes refined under the excluded-volume model (%d evaluations); with the paper's sizes T/N = %.6f\n",
-                  a.excluded_size_evaluations, a.T_over_N_excluded_paper_sizes);
+    out += printf_string(
+        "sizes refined under the excluded-volume model (%d evaluations); with the paper's sizes T/N = %.6f\n",
+        a.excluded_size_evaluations, a.T_over_N_excluded_paper_sizes);
   out += printf_string("%5s %14s %12s %12s\n", "h", "s_h/r_min", "P_h", "m_h");
-  for (int h = 0; h < a.levels; ++h) out += printf_string("%5d %14.6g %12.6g %12.6g\n", h + 1, a.sizes[h], m.P[h], m.m[h]);
+  for (int h = 0; h < a.levels; ++h)
+    out += printf_string("%5d %14.6g %12.6g %12.6g\n", h + 1, a.sizes[h], m.P[h], m.m[h]);
   return out;
 }
 

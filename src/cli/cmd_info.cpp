@@ -37,7 +37,8 @@ void run_info(const InfoOptions& o) {
   if (o.d_given) check_file_dimension(p.d, o.spec.d, o.file);
   const auto dist = recorded_distribution(p);
   const PackingQuality q = assess_packing(p, dist.get());
-  std::cout << (o.json ? packing_report_json(o.file, p, q, dist != nullptr) : packing_report_text(o.file, p, q, dist != nullptr));
+  std::cout << (o.json ? packing_report_json(o.file, p, q, dist != nullptr)
+                       : packing_report_text(o.file, p, q, dist != nullptr));
 }
 
 }  // namespace

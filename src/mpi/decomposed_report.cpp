@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 #include <string_view>
 
-#include "hgridlab/base/threads.hpp"
 #include "hgridlab/base/printf.hpp"
+#include "hgridlab/base/threads.hpp"
 #include "hgridlab/measure/fields.hpp"
 #include "hgridlab/model/distribution.hpp"
 #include "hgridlab/model/model.hpp"
@@ -17,7 +17,6 @@ namespace hgrid::mpi {
 namespace {
 
 using json = nlohmann::ordered_json;
-
 
 double shell_over_level_aware(const DecomposedRun& r) {
   return r.ghosts ? static_cast<double>(r.shell_ghosts) / static_cast<double>(r.ghosts) : 0.0;
