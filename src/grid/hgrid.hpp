@@ -14,6 +14,7 @@
 #include "hgridlab/grid/build_work.hpp"
 #include "hgridlab/grid/counters.hpp"
 #include "hgridlab/grid/detail/levels.hpp"
+#include "hgridlab/grid/detail/overlap4.hpp"
 #include "hgridlab/grid/detail/stencil.hpp"
 #include "hgridlab/base/error.hpp"
 #include "hgridlab/grid/geometry.hpp"
@@ -362,6 +363,36 @@ class HGrid {
       if (e.n == e.buf.size()) e.flush();
     }
   }
+  /// Overlap tests of sp (handed out as p) against the run [qb, qe) of
+  /// sorted particles, four at a time (detail/overlap4.hpp: each lane the
+  /// scalar test's arithmetic), the rest one at a time: the same pairs in
+  /// the same order as test() over the run. For long runs (a dense cell).
+  template <class Count, Boundary TB = B, class E>
+  void test_range(const Sphere<D>& sp, std::uint32_t p, std::uint32_t qb, std::uint32_t qe, E& e,
+                  Counters& out) const {
+    if constexpr (!Count::tests) return;
+    std::uint32_t q = qb;
+    if constexpr (detail::kOverlap4) {
+      const Sphere<D>* const s = sorted_.data();
+      for (; q + 4 <= qe; q += 4) {
+        unsigned bits = detail::overlap4<D, TB>(sp, s + q, box_);
+        if (bits == 0) continue;
+        if constexpr (Count::enabled) out.contacts += static_cast<std::uint64_t>(std::popcount(bits));
+        do {
+          e.buf[e.n++] = {p, q + static_cast<std::uint32_t>(std::countr_zero(bits))};
+          if (e.n == e.buf.size()) e.flush();
+          bits &= bits - 1;
+        } while (bits != 0);
+      }
+    }
+    for (; q < qe; ++q) test<Count, TB>(sp, p, q, e, out);
+  }
+  /// Same, for sorted particle p.
+  template <class Count, Boundary TB = B, class E>
+  void test_range(std::uint32_t p, std::uint32_t qb, std::uint32_t qe, E& e, Counters& out) const {
+    test_range<Count, TB>(sorted_[p], p, qb, qe, e, out);
+  }
+
   /// Overlap tests of p against a list of candidates, without a branch on
   /// their outcome: for the short candidate lists of sparse levels, where
   /// about one check in six overlaps. The buffer's fill count and p's sphere

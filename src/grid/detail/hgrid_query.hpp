@@ -130,11 +130,8 @@ void HGrid<D, B>::search_level(const Sphere<D>& sp, std::uint32_t p, int h, int 
   auto range = [&](std::uint32_t qb, std::uint32_t qe) {
     checked += qe - qb;
     if constexpr (Count::enabled) out.runs += qe > qb;
-    if (plain) {
-      for (std::uint32_t q = qb; q < qe; ++q) test<Count, Boundary::walls>(sp, p, q, f, out);
-    } else {
-      for (std::uint32_t q = qb; q < qe; ++q) test<Count>(sp, p, q, f, out);
-    }
+    if (plain) test_range<Count, Boundary::walls>(sp, p, qb, qe, f, out);
+    else test_range<Count>(sp, p, qb, qe, f, out);
   };
   const std::uint32_t first = level_begin_[j], last = level_begin_[j + 1];
   if constexpr (Count::enabled) {
@@ -324,10 +321,9 @@ void HGrid<D, B>::cells_phase(int h, std::uint64_t u0, std::uint64_t u1, F& f, C
     if constexpr (Count::enabled) out.probes += lv.ranked ? 0 : nb_cells;
     const bool plain = rows.plain_dx && interior;
     const auto tests = [&]<Boundary TB>(std::uint32_t p) {
-      for (std::uint32_t q = p + 1; q < end; ++q) test<Count, TB>(p, q, f, out);
+      test_range<Count, TB>(p, p + 1, end, f, out);
       test_list<Count, TB>(p, cand.data(), n_cand, f, out);
-      for (int m = 0; m < n_nb; ++m)
-        for (std::uint32_t q = nb[m].first; q < nb[m].second; ++q) test<Count, TB>(p, q, f, out);
+      for (int m = 0; m < n_nb; ++m) test_range<Count, TB>(p, nb[m].first, nb[m].second, f, out);
     };
     for (std::uint32_t p = beg; p < end; ++p) {
       if (plain) tests.template operator()<Boundary::walls>(p);

@@ -1,0 +1,75 @@
+// The narrow-phase test of one sphere against four consecutive spheres of an
+// array at once (AVX2), for the long candidate runs of dense cells (a linked
+// cell's cells hold ~100 small spheres, and its same-level pass was three
+// quarters of a DPM step).
+//
+// Each lane does the scalar test's IEEE operations in the scalar test's
+// order (geometry.hpp: dx = q - p per axis, the minimum image where asked,
+// s = ((0 + dx0^2) + dx1^2) [+ dx2^2], rs = r_p + r_q, s < rs^2), and the
+// build has no contraction (-ffp-contract=off), so every lane's answer is
+// the scalar test's, bit for bit. Without AVX2 the scalar test runs.
+#pragma once
+#include <cstdint>
+
+#include "hgridlab/grid/geometry.hpp"
+
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
+
+namespace hgrid::detail {
+
+#if defined(__AVX2__)
+inline constexpr bool kOverlap4 = true;
+
+/// Bit t set if sphere p overlaps s[t], t = 0..3.
+template <int D, Boundary B>
+inline unsigned overlap4(const Sphere<D>& p, const Sphere<D>* s, const Extent<D>& box) {
+  static_assert(D == 2 || D == 3);
+  static_assert(sizeof(Sphere<D>) == (D + 1) * sizeof(double));
+  const double* m = &s[0].x[0];
+  __m256d x[D], r;
+  if constexpr (D == 3) {  // four (x0, x1, x2, r) rows transposed
+    const __m256d l0 = _mm256_loadu_pd(m), l1 = _mm256_loadu_pd(m + 4), l2 = _mm256_loadu_pd(m + 8),
+                  l3 = _mm256_loadu_pd(m + 12);
+    const __m256d t0 = _mm256_unpacklo_pd(l0, l1), t1 = _mm256_unpackhi_pd(l0, l1);
+    const __m256d t2 = _mm256_unpacklo_pd(l2, l3), t3 = _mm256_unpackhi_pd(l2, l3);
+    x[0] = _mm256_permute2f128_pd(t0, t2, 0x20);
+    x[2] = _mm256_permute2f128_pd(t0, t2, 0x31);
+    x[1] = _mm256_permute2f128_pd(t1, t3, 0x20);
+    r = _mm256_permute2f128_pd(t1, t3, 0x31);
+  } else {  // four (x0, x1, r) triples: a = [a0 a1 ar b0], b = [b1 br c0 c1], c = [cr d0 d1 dr]
+    const __m256d a = _mm256_loadu_pd(m), b = _mm256_loadu_pd(m + 4), c = _mm256_loadu_pd(m + 8);
+    const __m256d u = _mm256_blend_pd(_mm256_blend_pd(a, b, 0b0100), c, 0b0010);  // [a0 d0 c0 b0]
+    const __m256d v = _mm256_blend_pd(_mm256_blend_pd(a, b, 0b1001), c, 0b0100);  // [b1 a1 d1 c1]
+    const __m256d w = _mm256_blend_pd(_mm256_blend_pd(a, b, 0b0010), c, 0b1001);  // [cr br ar dr]
+    x[0] = _mm256_permute4x64_pd(u, 0b01101100);  // lanes 0 3 2 1
+    x[1] = _mm256_permute4x64_pd(v, 0b10110001);  // lanes 1 0 3 2
+    r = _mm256_permute4x64_pd(w, 0b11000110);     // lanes 2 1 0 3
+  }
+  __m256d s2 = _mm256_setzero_pd();
+  for (int k = 0; k < D; ++k) {
+    __m256d dx = _mm256_sub_pd(x[k], _mm256_set1_pd(p.x[k]));
+    if constexpr (B == Boundary::periodic) {  // min_image: dx - a above a/2, dx + a below -a/2
+      const __m256d a = _mm256_set1_pd(box[k]), half = _mm256_set1_pd(0.5 * box[k]),
+                    nhalf = _mm256_set1_pd(-0.5 * box[k]);
+      const __m256d above = _mm256_cmp_pd(dx, half, _CMP_GT_OQ), below = _mm256_cmp_pd(dx, nhalf, _CMP_LT_OQ);
+      dx = _mm256_blendv_pd(_mm256_blendv_pd(dx, _mm256_sub_pd(dx, a), above), _mm256_add_pd(dx, a), below);
+    }
+    s2 = _mm256_add_pd(s2, _mm256_mul_pd(dx, dx));
+  }
+  const __m256d rs = _mm256_add_pd(_mm256_set1_pd(p.r), r);
+  return static_cast<unsigned>(_mm256_movemask_pd(_mm256_cmp_pd(s2, _mm256_mul_pd(rs, rs), _CMP_LT_OQ)));
+}
+#else
+inline constexpr bool kOverlap4 = false;
+
+template <int D, Boundary B>
+inline unsigned overlap4(const Sphere<D>& p, const Sphere<D>* s, const Extent<D>& box) {
+  unsigned bits = 0;
+  for (unsigned t = 0; t < 4; ++t) bits |= static_cast<unsigned>(overlap<D, B>(p, s[t], box)) << t;
+  return bits;
+}
+#endif
+
+}  // namespace hgrid::detail
