@@ -4,6 +4,7 @@
 #pragma once
 #include "hgridlab/grid/version.hpp"
 #include "hgridlab/base/error.hpp"
+#include "hgridlab/base/heap.hpp"
 #include "hgridlab/base/parallel.hpp"
 #include "hgridlab/base/printf.hpp"
 #include "hgridlab/base/progress.hpp"

@@ -10,6 +10,7 @@
 
 #include "common.hpp"
 #include "hgridlab/base/error.hpp"
+#include "hgridlab/base/heap.hpp"
 #include "hgridlab/io/provenance.hpp"
 #include "hgridlab/mpi/comm.hpp"
 
@@ -87,6 +88,7 @@ int parse_and_run(CLI::App& app, int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  hgrid::keep_freed_memory();  // before any thread: the grids built and dropped in loops reuse their pages
   // MPI only when mpirun or srun started this process (mpi/comm.hpp).
   const hgrid::mpi::Session mpi_session(argc, argv);
   if (!hgrid::mpi::built_with_mpi() && hgrid::mpi::launched_ranks() > 1) {
