@@ -17,7 +17,7 @@ constexpr double kRestitutionTol = 1e-6;   // |e_measured - e_set|
 constexpr double kEnergyDriftTol = 1e-4;   // relative, 1e4 steps, e = 1
 constexpr double kMomentumTol = 1e-12;     // relative to sum m |v|
 constexpr double kWallRestitutionTol = 1e-4;
-constexpr std::uint64_t kSeed = 20140357;
+constexpr std::uint64_t kDpmSeed = 20140357;
 
 Packing make_packing(int d, Boundary b, std::array<double, 3> box, std::vector<double> pos, std::vector<double> radii) {
   Packing p;
@@ -87,8 +87,8 @@ Packing gas(int d, int per_axis, double spacing, double r, std::vector<double>& 
 
 TEST(Dpm, ElasticGasConservesEnergy) {
   std::vector<double> vel;
-  const auto p = gas(2, 10, 3.0, 1.0, vel, 0.2, kSeed);
-  SCOPED_TRACE("seed " + std::to_string(kSeed));
+  const auto p = gas(2, 10, 3.0, 1.0, vel, 0.2, kDpmSeed);
+  SCOPED_TRACE("seed " + std::to_string(kDpmSeed));
   auto c = base_config(2, Boundary::periodic, p.box, 1.0, 1.0 / 50);
   auto sim = make_simulation(c, p, vel);
   const double e0 = sim->kinetic_energy() + sim->elastic_energy();
@@ -120,8 +120,8 @@ TEST(Dpm, PeriodicBoxConservesMomentum) {
   for (int d : {2, 3})
     for (bool friction : {false, true}) {
       std::vector<double> vel;
-      const auto p = gas(d, d == 2 ? 8 : 4, 2.2, 1.0, vel, 0.5, kSeed + d);
-      SCOPED_TRACE("seed " + std::to_string(kSeed + d));
+      const auto p = gas(d, d == 2 ? 8 : 4, 2.2, 1.0, vel, 0.5, kDpmSeed + d);
+      SCOPED_TRACE("seed " + std::to_string(kDpmSeed + d));
       auto c = base_config(d, Boundary::periodic, p.box, 0.7, 1.0 / 20);
       c.friction = friction;
       auto sim = make_simulation(c, p, vel);
@@ -152,7 +152,7 @@ TEST(Dpm, TooLargeTimeStepIsRefused) {
 
 TEST(Dpm, SwitchedOffEffectsDoNoWork) {
   std::vector<double> vel;
-  const auto p = gas(2, 8, 2.2, 1.0, vel, 0.5, kSeed);
+  const auto p = gas(2, 8, 2.2, 1.0, vel, 0.5, kDpmSeed);
   auto c = base_config(2, Boundary::periodic, p.box, 0.7, 1.0 / 20);
   auto plain = make_simulation(c, p, vel);
   plain->run(200);
@@ -187,8 +187,8 @@ TEST(Dpm, TrajectoryDoesNotDependOnTheGrid) {
   for (int d : {2, 3})
     for (bool friction : {false, true}) {
       std::vector<double> vel;
-      const auto p = gas(d, d == 2 ? 12 : 5, 2.05, 1.0, vel, 0.5, kSeed + 7 * d);
-      SCOPED_TRACE("seed " + std::to_string(kSeed + 7 * d) + ", d " + std::to_string(d) + ", friction " +
+      const auto p = gas(d, d == 2 ? 12 : 5, 2.05, 1.0, vel, 0.5, kDpmSeed + 7 * d);
+      SCOPED_TRACE("seed " + std::to_string(kDpmSeed + 7 * d) + ", d " + std::to_string(d) + ", friction " +
                    std::to_string(friction));
       auto c = base_config(d, Boundary::periodic, p.box, 0.7, 1.0 / 20);
       c.friction = friction;
@@ -218,8 +218,8 @@ TEST(Dpm, TrajectoryDoesNotDependOnTheGrid) {
 TEST(Dpm, TrajectoryDoesNotDependOnTheThreads) {
   for (int d : {2, 3}) {
     std::vector<double> vel;
-    const auto p = gas(d, d == 2 ? 40 : 12, 2.05, 1.0, vel, 0.5, kSeed + 11 * d);
-    SCOPED_TRACE("seed " + std::to_string(kSeed + 11 * d) + ", d " + std::to_string(d));
+    const auto p = gas(d, d == 2 ? 40 : 12, 2.05, 1.0, vel, 0.5, kDpmSeed + 11 * d);
+    SCOPED_TRACE("seed " + std::to_string(kDpmSeed + 11 * d) + ", d " + std::to_string(d));
     auto c = base_config(d, Boundary::periodic, p.box, 0.7, 1.0 / 20);
     c.sizes = {1.25, 2.5};
     std::vector<std::vector<double>> runs;
@@ -243,7 +243,7 @@ TEST(Dpm, TrajectoryDoesNotDependOnTheThreads) {
 // for bit).
 TEST(Dpm, DensePileWithFrictionDoesNotDependOnTheThreads) {
   for (int d : {2, 3}) {
-    const std::uint64_t seed = kSeed + 13 * d;
+    const std::uint64_t seed = kDpmSeed + 13 * d;
     SCOPED_TRACE("seed " + std::to_string(seed) + ", d " + std::to_string(d));
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0.0, 1.0);

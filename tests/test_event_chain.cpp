@@ -24,7 +24,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr std::uint64_t kSeed = 20261129;
+constexpr std::uint64_t kEventChainSeed = 20261129;
 /// Sweeps sampled in the two-sphere tests (one sample per sweep: a chain
 /// there moves the pair through 20 radii, twice the box side), and the
 /// largest difference of a sampled probability from the exact one: 4.5
@@ -39,14 +39,14 @@ constexpr double kBalanceTol = 4.5 * 0.5 / 200.0;  // 4.5 sqrt(1/4 / kSamples)
 /// and back; the pair never comes closer than sigma.
 template <int D>
 void two_spheres_sample_the_uniform_distribution(double ra, double rb, double L) {
-  SCOPED_TRACE("d " + std::to_string(D) + " seed " + std::to_string(kSeed));
+  SCOPED_TRACE("d " + std::to_string(D) + " seed " + std::to_string(kEventChainSeed));
   Extent<D> box;
   box.fill(L);
   const std::vector<double> radii{ra, rb};
   std::vector<double> pos(2 * D, 0.5 * L);
   pos[0] = 0.1 * L;
   detail::EventChain<D> chains(box, radii, pos);
-  detail::GenRng rng(kSeed);
+  detail::GenRng rng(kEventChainSeed);
   const double sigma = (ra + rb) * (1 - detail::kChainShrink);
   const auto ball = [](double r) { return D == 3 ? 4.0 / 3.0 * std::numbers::pi * r * r * r : std::numbers::pi * r * r; };
   const double room = 0.5 * L - sigma;
@@ -87,7 +87,7 @@ PackingSpec chain_spec(int d, double nu, ExcludedMethod method) {
   s.omega = 10;
   s.placement = Placement::excluded;
   s.method = method;
-  s.seed = kSeed;
+  s.seed = kEventChainSeed;
   s.progress = false;
   s.equilibrate = true;
   s.moves = EquilibrationMoves::event_chain;
@@ -102,7 +102,7 @@ TEST(EventChain, EquilibratesPackingsWithinItsShrink) {
   for (const auto& [d, nu, method] : std::vector<std::tuple<int, double, ExcludedMethod>>{
            {3, 0.5, ExcludedMethod::rsa}, {3, 0.6, ExcludedMethod::growth}, {2, 0.7, ExcludedMethod::growth}}) {
     SCOPED_TRACE("d " + std::to_string(d) + " nu " + std::to_string(nu) + " " + to_string(method) + " seed " +
-                 std::to_string(kSeed));
+                 std::to_string(kEventChainSeed));
     auto s = chain_spec(d, nu, method);
     s.equilibrate = false;
     s.moves = EquilibrationMoves::metropolis;

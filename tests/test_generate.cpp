@@ -30,10 +30,10 @@ namespace fs = std::filesystem;
 constexpr double kNuTol = 1e-12;           // achieved nu, relative
 constexpr double kMinKsPvalue = 1e-3;      // goodness of fit of the radius sample
 constexpr double kRelaxedOverlapTol = 1e-4;  // growth + FIRE packings
-constexpr std::uint64_t kSeed = 20140901;
+constexpr std::uint64_t kGenerateSeed = 20140901;
 
 PackingSpec spec(int d, std::size_t n, double nu, double alpha, double omega, Placement pl,
-                 Boundary b = Boundary::periodic, std::uint64_t seed = kSeed) {
+                 Boundary b = Boundary::periodic, std::uint64_t seed = kGenerateSeed) {
   PackingSpec s;
   s.d = d;
   s.n = n;
@@ -58,7 +58,7 @@ TEST(Generate, RadiusSampleFitsPdf) {
   for (auto [alpha, omega] : std::vector<std::pair<double, double>>{
            {0, 10}, {-1, 10}, {-1, 100}, {-2, 3}, {-3, 100}, {-3, 1.001}, {0, 1.0001}}) {
     SCOPED_TRACE("alpha " + std::to_string(alpha) + " omega " + std::to_string(omega) + " seed " +
-                 std::to_string(kSeed));
+                 std::to_string(kGenerateSeed));
     const auto s = spec(3, 20000, 0.3, alpha, omega, Placement::random);
     const Packing p = generate_packing(s);
     const auto dist = make_distribution(s);
@@ -76,7 +76,7 @@ TEST(Generate, RadiusSampleFitsPdf) {
 TEST(Generate, AchievedNuIsExact) {
   for (auto pl : {Placement::random, Placement::excluded})
     for (int d : {2, 3}) {
-      SCOPED_TRACE("d " + std::to_string(d) + " " + to_string(pl) + " seed " + std::to_string(kSeed));
+      SCOPED_TRACE("d " + std::to_string(d) + " " + to_string(pl) + " seed " + std::to_string(kGenerateSeed));
       const Packing p = generate_packing(spec(d, 3000, 0.45, -3, 10, pl));
       EXPECT_NEAR(p.packing_fraction() / 0.45, 1.0, kNuTol);
       EXPECT_NEAR(p.num_attrs.at("nu_achieved") / 0.45, 1.0, kNuTol);
@@ -86,7 +86,7 @@ TEST(Generate, AchievedNuIsExact) {
 TEST(Generate, SequentialAdditionHasNoOverlapAndRespectsWalls) {
   for (auto b : {Boundary::periodic, Boundary::walls})
     for (int d : {2, 3}) {
-      SCOPED_TRACE(std::string(to_string(b)) + " d " + std::to_string(d) + " seed " + std::to_string(kSeed));
+      SCOPED_TRACE(std::string(to_string(b)) + " d " + std::to_string(d) + " seed " + std::to_string(kGenerateSeed));
       const double nu = d == 2 ? 0.4 : 0.6;
       const Packing p = generate_packing(spec(d, 4000, nu, -3, d == 2 ? 20 : 10, Placement::excluded, b));
       EXPECT_EQ(p.str_attrs.at("method"), "rsa");
@@ -134,7 +134,7 @@ TEST(Generate, SlabCountingNoiseOfManufacturedPackings) {
 TEST(Generate, GrowthReachesDenseEqualVolumeDistribution) {
   // alpha = 0: sequential addition stalls well below 0.6; growth + FIRE finishes.
   for (auto b : {Boundary::periodic, Boundary::walls}) {
-    SCOPED_TRACE(std::string(to_string(b)) + " seed " + std::to_string(kSeed));
+    SCOPED_TRACE(std::string(to_string(b)) + " seed " + std::to_string(kGenerateSeed));
     const Packing p = generate_packing(spec(3, 1500, 0.6, 0, 4, Placement::excluded, b));
     EXPECT_EQ(p.str_attrs.at("method"), "rsa+growth+fire");
     EXPECT_NEAR(p.packing_fraction() / 0.6, 1.0, kNuTol);
@@ -163,10 +163,10 @@ void expect_canonical_lists(std::uint64_t seed) {
 }
 
 TEST(Generate, NeighbourListsAreTheBrutePairsInCanonicalOrder) {
-  expect_canonical_lists<3, Boundary::periodic>(kSeed);
-  expect_canonical_lists<3, Boundary::walls>(kSeed + 1);
-  expect_canonical_lists<2, Boundary::periodic>(kSeed + 2);
-  expect_canonical_lists<2, Boundary::walls>(kSeed + 3);
+  expect_canonical_lists<3, Boundary::periodic>(kGenerateSeed);
+  expect_canonical_lists<3, Boundary::walls>(kGenerateSeed + 1);
+  expect_canonical_lists<2, Boundary::periodic>(kGenerateSeed + 2);
+  expect_canonical_lists<2, Boundary::walls>(kGenerateSeed + 3);
 }
 
 TEST(Generate, SameSeedSamePacking) {
@@ -183,7 +183,7 @@ TEST(Generate, SameSeedSamePacking) {
   EXPECT_EQ(a.num_attrs, b.num_attrs);
   EXPECT_EQ(a.str_attrs, b.str_attrs);
   auto other = s;
-  other.seed = kSeed + 1;
+  other.seed = kGenerateSeed + 1;
   EXPECT_NE(generate_packing(other).positions, a.positions);
   fs::remove_all(dir);
 }
@@ -212,7 +212,7 @@ TEST(Generate, CacheGeneratesOnceAndChecksBeforeReuse) {
 
 TEST(Generate, EquilibrationKeepsRadiiNuAndZeroOverlap) {
   for (auto b : {Boundary::periodic, Boundary::walls}) {
-    SCOPED_TRACE(std::string(to_string(b)) + " seed " + std::to_string(kSeed));
+    SCOPED_TRACE(std::string(to_string(b)) + " seed " + std::to_string(kGenerateSeed));
     auto s = spec(3, 3000, 0.55, -3, 10, Placement::excluded, b);
     const Packing before = generate_packing(s);
     s.equilibrate = true;
@@ -244,7 +244,7 @@ TEST(Generate, EquilibrationIsTheSameForAnyThreadCount) {
                        Case{2, 3000, 0.6, 5, Boundary::periodic}, Case{2, 2000, 0.6, 5, Boundary::walls},
                        Case{3, 300, 0.3, 10, Boundary::periodic}, Case{3, 60, 0.3, 4, Boundary::walls}}) {
     SCOPED_TRACE("d " + std::to_string(c.d) + " n " + std::to_string(c.n) + " " + to_string(c.b) + " seed " +
-                 std::to_string(kSeed));
+                 std::to_string(kGenerateSeed));
     auto s = spec(c.d, c.n, c.nu, -3, c.omega, Placement::excluded, c.b);
     s.equilibrate = true;
     s.sweeps = 30;
@@ -295,7 +295,7 @@ TEST(Generate, ResumedEquilibrationIsTheUninterruptedOne) {
   const fs::path dir = temp_dir("resume");
   for (const auto& [d, b] : std::vector<std::pair<int, Boundary>>{
            {3, Boundary::periodic}, {3, Boundary::walls}, {2, Boundary::walls}}) {
-    SCOPED_TRACE("d " + std::to_string(d) + " " + to_string(b) + " seed " + std::to_string(kSeed));
+    SCOPED_TRACE("d " + std::to_string(d) + " " + to_string(b) + " seed " + std::to_string(kGenerateSeed));
     auto s = spec(d, 2000, 0.5, -3, 5, Placement::excluded, b);
     s.equilibrate = true;
     s.sweeps = 30;
@@ -396,7 +396,7 @@ TEST(Generate, SequentialAdditionIsTheSameForAnyThreadCount) {
                        Case{2, 3000, 0.7, -3, 5, Boundary::periodic}, Case{2, 2000, 0.65, -3, 5, Boundary::walls},
                        Case{3, 400, 0.45, 0, 1.5, Boundary::periodic}}) {  // the last stalls: growth + FIRE
     SCOPED_TRACE("d " + std::to_string(c.d) + " n " + std::to_string(c.n) + " " + to_string(c.b) + " seed " +
-                 std::to_string(kSeed));
+                 std::to_string(kGenerateSeed));
     auto s = spec(c.d, c.n, c.nu, c.alpha, c.omega, Placement::excluded, c.b);
     s.threads = 1;
     const Packing one = generate_packing(s);
@@ -425,8 +425,8 @@ TEST(Generate, GrowthAndFireIsTheSameForAnyThreadCount) {
   for (const Case c : {Case{3, 1500, Boundary::periodic}, Case{3, 1200, Boundary::walls},
                        Case{2, 1500, Boundary::walls}}) {
     SCOPED_TRACE("d " + std::to_string(c.d) + " n " + std::to_string(c.n) + " " + to_string(c.b) + " seed " +
-                 std::to_string(kSeed));
-    std::mt19937_64 rng(kSeed);
+                 std::to_string(kGenerateSeed));
+    std::mt19937_64 rng(kGenerateSeed);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     std::vector<double> radii(c.n), pos(c.n * static_cast<std::size_t>(c.d));
     double volume = 0;

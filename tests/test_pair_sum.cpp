@@ -16,7 +16,7 @@
 namespace hgrid {
 namespace {
 
-constexpr std::uint64_t kSeed = 4099;
+constexpr std::uint64_t kPairSumSeed = 4099;
 
 struct Contribution {
   double a, b;
@@ -70,7 +70,7 @@ void check(std::size_t n, const std::set<std::pair<std::uint32_t, std::uint32_t>
 }
 
 TEST(PairSum, SameAsOneLoopForAnyThreads) {
-  std::mt19937_64 rng(kSeed);
+  std::mt19937_64 rng(kPairSumSeed);
   for (std::size_t n : {1u, 2u, 7u, 1000u, 50000u}) {
     std::set<std::pair<std::uint32_t, std::uint32_t>> pairs;
     std::uniform_int_distribution<std::uint32_t> u(0, static_cast<std::uint32_t>(n - 1));
@@ -78,19 +78,19 @@ TEST(PairSum, SameAsOneLoopForAnyThreads) {
       const std::uint32_t a = u(rng), b = u(rng);
       if (a != b) pairs.emplace(std::min(a, b), std::max(a, b));
     }
-    check(n, pairs, kSeed + n);
+    check(n, pairs, kPairSumSeed + n);
   }
 }
 
 TEST(PairSum, SkewedAndEmpty) {
   std::set<std::pair<std::uint32_t, std::uint32_t>> star, none;
   for (std::uint32_t j = 1; j < 5000; ++j) star.emplace(0, j);  // one particle in every pair
-  check(5000, star, kSeed + 1);
+  check(5000, star, kPairSumSeed + 1);
   std::set<std::pair<std::uint32_t, std::uint32_t>> tail;
   for (std::uint32_t i = 4990; i < 5000; ++i)
     for (std::uint32_t j = i + 1; j < 5000; ++j) tail.emplace(i, j);  // all pairs among the last particles
-  check(5000, tail, kSeed + 2);
-  check(5000, none, kSeed + 3);
+  check(5000, tail, kPairSumSeed + 2);
+  check(5000, none, kPairSumSeed + 3);
 }
 
 TEST(PairSum, ExceptionReachesTheCaller) {

@@ -20,8 +20,8 @@
 namespace hgrid {
 namespace {
 
-constexpr std::uint64_t kSeed = 20140901;
-constexpr double kNuTol = 1e-12;  // achieved nu, relative
+constexpr std::uint64_t kStationarySeed = 20140901;
+constexpr double kStationaryNuTol = 1e-12;  // achieved nu, relative
 
 TEST(Stationary, ConstantAndNoisySeriesPass) {
   using detail::kStationaryMinSamples;
@@ -30,7 +30,7 @@ TEST(Stationary, ConstantAndNoisySeriesPass) {
       << "fewer samples than the minimum";
   flat.push_back(10.0);
   EXPECT_TRUE(detail::test_stationary(flat, kStationaryRelTol, kStationaryMinSamples).stationary);
-  std::mt19937_64 rng(kSeed);  // seeded: white noise of 0.1 % around 10
+  std::mt19937_64 rng(kStationarySeed);  // seeded: white noise of 0.1 % around 10
   std::normal_distribution<double> noise(0.0, 0.01);
   std::vector<double> noisy;
   for (int i = 0; i < 400; ++i) noisy.push_back(10.0 + noise(rng));
@@ -57,7 +57,7 @@ TEST(Stationary, DriftBeyondNoiseAndToleranceFails) {
   EXPECT_FALSE(detail::test_stationary(linear, kStationaryRelTol, detail::kStationaryMinSamples).stationary);
   // Noise hides no drift: 1 % noise around a constant fails (it would need
   // far more samples), where the drift alone is zero.
-  std::mt19937_64 rng(kSeed);
+  std::mt19937_64 rng(kStationarySeed);
   std::normal_distribution<double> noise(0.0, 0.1);
   std::vector<double> noisy;
   for (int i = 0; i < 400; ++i) noisy.push_back(10.0 + noise(rng));
@@ -77,7 +77,7 @@ PackingSpec stationary_spec(int d, Boundary b, int threads) {
   s.stationary_tol = kLooseTol;
   s.boundary = b;
   s.placement = Placement::excluded;
-  s.seed = kSeed;
+  s.seed = kStationarySeed;
   s.equilibrate = true;
   s.stop = EquilibrationStop::stationary;
   s.sweeps = 400;  // the cap
@@ -100,7 +100,7 @@ PackingSpec small_spec(int d, Boundary b) {
 // of fixed sweeps.
 TEST(Stationary, NoisyPackingRunsToItsCap) {
   for (const auto& [d, b] : std::vector<std::pair<int, Boundary>>{{3, Boundary::walls}, {2, Boundary::periodic}}) {
-    SCOPED_TRACE("d " + std::to_string(d) + " " + to_string(b) + " seed " + std::to_string(kSeed));
+    SCOPED_TRACE("d " + std::to_string(d) + " " + to_string(b) + " seed " + std::to_string(kStationarySeed));
     const PackingSpec s = small_spec(d, b);
     const Packing p = generate_packing(s);
     EXPECT_EQ(equilibration_sweeps_done(p), 150u);
@@ -117,7 +117,7 @@ TEST(Stationary, NoisyPackingRunsToItsCap) {
 // same positions as a stop = sweeps run of exactly that many sweeps.
 TEST(Stationary, StopsOnTheSameChainAndIsExact) {
   for (const auto& [d, b] : std::vector<std::pair<int, Boundary>>{{3, Boundary::periodic}, {2, Boundary::walls}}) {
-    SCOPED_TRACE("d " + std::to_string(d) + " " + to_string(b) + " seed " + std::to_string(kSeed));
+    SCOPED_TRACE("d " + std::to_string(d) + " " + to_string(b) + " seed " + std::to_string(kStationarySeed));
     const PackingSpec s = stationary_spec(d, b, 1);
     const Packing p = generate_packing(s);
     const std::uint64_t done = equilibration_sweeps_done(p);
@@ -129,7 +129,7 @@ TEST(Stationary, StopsOnTheSameChainAndIsExact) {
     EXPECT_EQ(p.str_attrs.at("cache_key"), packing_key(s));
     EXPECT_EQ(packing_mismatch(p, s), "");
     EXPECT_EQ(assess_packing(p, nullptr).max_rel_overlap, 0.0);
-    EXPECT_NEAR(p.packing_fraction() / s.nu, 1.0, kNuTol);
+    EXPECT_NEAR(p.packing_fraction() / s.nu, 1.0, kStationaryNuTol);
     PackingSpec fixed = s;
     fixed.stop = EquilibrationStop::sweeps;
     fixed.sweeps = static_cast<int>(done);

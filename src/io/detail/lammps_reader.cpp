@@ -14,8 +14,6 @@ namespace {
 /// Lines read before the first "N atoms" line of a data file's header is
 /// given up on.
 constexpr int kDataHeaderLines = 60;
-/// Particles reserved up front at most (a declared count may be a lie).
-constexpr std::size_t kReserveAtMost = std::size_t{1} << 20;
 
 std::string_view before_comment(std::string_view line) { return trim(line.substr(0, line.find('#'))); }
 

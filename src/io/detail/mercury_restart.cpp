@@ -19,9 +19,6 @@
 namespace hgrid::detail {
 namespace {
 
-/// The most rows reserved before they are read (a file's count may lie).
-constexpr std::size_t kReserveAtMost = std::size_t{1} << 20;
-
 /// One object line: its type and its keys' values (numbers only).
 struct Object {
   std::string type;

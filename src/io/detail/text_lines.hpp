@@ -11,6 +11,9 @@
 
 namespace hgrid::detail {
 
+/// Particles (rows) reserved up front at most: a file's declared count may lie.
+inline constexpr std::size_t kReserveAtMost = std::size_t{1} << 20;
+
 /// Lines of a text held in memory, numbered from 1; a UTF-8 byte-order mark
 /// and the '\r' of CRLF line ends are dropped.
 class Lines {
