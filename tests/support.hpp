@@ -17,6 +17,9 @@ namespace hgrid::test {
 
 using Pair = std::pair<std::uint32_t, std::uint32_t>;
 
+/// A generated packing's achieved packing fraction against the one asked, relative.
+inline constexpr double kNuTol = 1e-12;
+
 /// Radius from a truncated power law r^alpha on [1, omega] by inverse CDF.
 inline double power_law_radius(double u, double alpha, double omega) {
   if (omega == 1.0) return 1.0;

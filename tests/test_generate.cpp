@@ -27,7 +27,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kNuTol = 1e-12;           // achieved nu, relative
+using test::kNuTol;
 constexpr double kMinKsPvalue = 1e-3;      // goodness of fit of the radius sample
 constexpr double kRelaxedOverlapTol = 1e-4;  // growth + FIRE packings
 constexpr std::uint64_t kGenerateSeed = 20140901;

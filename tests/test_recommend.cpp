@@ -33,8 +33,6 @@ const std::string kNoCalibration = "HGRID_CALIBRATION=/nonexistent/calibration.j
 
 using Recommend = TempDir;
 
-std::string number_text(double v) { return format_number(v); }
-
 nlohmann::json recommend_json(const std::string& args) {
   const Result r = hgrid_run("recommend " + args + " --json", kNoCalibration);
   EXPECT_EQ(r.status, 0) << args << "\n" << r.err;
@@ -60,21 +58,25 @@ TEST_F(Recommend, SameRadiiInEveryFormatAndUnitGiveTheSameSizes) {
   constexpr std::uint64_t kSeed = 21;
   const Packing p = packing_from(random_scene<3>(2000, 0.3, -3, 20, Boundary::periodic, kSeed), Boundary::periodic);
   write_packing(path("p.h5"), p);
-  std::string csv = "# box " + number_text(p.box[0]) + " " + number_text(p.box[1]) + " " + number_text(p.box[2]) + "\nid,x,y,z,radius\n";
-  std::string mm = "# box " + number_text(1000 * p.box[0]) + " " + number_text(1000 * p.box[1]) + " " + number_text(1000 * p.box[2]) +
-                   "\nx y z diameter\n";
+  std::string csv = "# box " + format_number(p.box[0]) + " " + format_number(p.box[1]) + " " + format_number(p.box[2]) +
+                    "\nid,x,y,z,radius\n";
+  std::string mm = "# box " + format_number(1000 * p.box[0]) + " " + format_number(1000 * p.box[1]) + " " +
+                   format_number(1000 * p.box[2]) + "\nx y z diameter\n";
   std::string pow2 = "r\n";  // radii in a unit 1/1024 of the original: exact
   std::string radii, dump = "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n" + std::to_string(p.size()) +
                             "\nITEM: BOX BOUNDS pp pp pp\n";
-  for (int a = 0; a < 3; ++a) dump += "0 " + number_text(p.box[a]) + "\n";
+  for (int a = 0; a < 3; ++a) dump += "0 " + format_number(p.box[a]) + "\n";
   dump += "ITEM: ATOMS id type diameter x y z\n";
   for (std::size_t i = 0; i < p.size(); ++i) {
     const double* x = &p.positions[3 * i];
-    csv += std::to_string(i) + "," + number_text(x[0]) + "," + number_text(x[1]) + "," + number_text(x[2]) + "," + number_text(p.radii[i]) + "\n";
-    mm += number_text(1000 * x[0]) + " " + number_text(1000 * x[1]) + " " + number_text(1000 * x[2]) + " " + number_text(2000 * p.radii[i]) + "\n";
-    radii += number_text(p.radii[i]) + "\n";
-    pow2 += number_text(1024 * p.radii[i]) + "\n";
-    dump += std::to_string(i + 1) + " 1 " + number_text(2 * p.radii[i]) + " " + number_text(x[0]) + " " + number_text(x[1]) + " " + number_text(x[2]) + "\n";
+    csv += std::to_string(i) + "," + format_number(x[0]) + "," + format_number(x[1]) + "," + format_number(x[2]) + "," +
+           format_number(p.radii[i]) + "\n";
+    mm += format_number(1000 * x[0]) + " " + format_number(1000 * x[1]) + " " + format_number(1000 * x[2]) + " " +
+          format_number(2000 * p.radii[i]) + "\n";
+    radii += format_number(p.radii[i]) + "\n";
+    pow2 += format_number(1024 * p.radii[i]) + "\n";
+    dump += std::to_string(i + 1) + " 1 " + format_number(2 * p.radii[i]) + " " + format_number(x[0]) + " " +
+            format_number(x[1]) + " " + format_number(x[2]) + "\n";
   }
   std::ofstream(path("p.csv")) << csv;
   std::ofstream(path("mm.txt")) << mm;
@@ -88,7 +90,7 @@ TEST_F(Recommend, SameRadiiInEveryFormatAndUnitGiveTheSameSizes) {
   EXPECT_EQ(ref["nu_source"], "box");
   EXPECT_EQ(ref["K_source"], "paper");
   EXPECT_EQ(ref["K"].get<double>(), 0.2);
-  const std::string nu = number_text(ref["nu"].get<double>());
+  const std::string nu = format_number(ref["nu"].get<double>());
   for (const std::string& f : {std::string("p.csv"), std::string("p.dump"), std::string("data.lmp")})
     expect_same_sizes(recommend_json(path(f)), ref, 1.0, f);
   expect_same_sizes(recommend_json(path("radii.txt") + " --d 3 --nu " + nu), ref, 1.0, "radii.txt");
@@ -112,7 +114,7 @@ TEST_F(Recommend, LibraryAgreesWithModelRadiiAndTheLinkedCell) {
   EXPECT_EQ(r.speedup(), r.linked_cell.T_over_N / r.model.T_over_N);
   // The same T/N as `hgrid model --radii` (which works in the radii's unit).
   std::string text;
-  for (double v : radii) text += number_text(v) + "\n";
+  for (double v : radii) text += format_number(v) + "\n";
   std::ofstream(path("r.txt")) << text;
   const Result m = hgrid_run("model --radii " + path("r.txt") + " --nu 0.4 --d 3 --K 0.2 --json");
   ASSERT_EQ(m.status, 0) << m.err;

@@ -16,12 +16,13 @@
 #include "hgridlab/packing/identity.hpp"
 
 #include "killed_run.hpp"
+#include "support.hpp"
 
 namespace hgrid {
 namespace {
 
 constexpr std::uint64_t kStationarySeed = 20140901;
-constexpr double kStationaryNuTol = 1e-12;  // achieved nu, relative
+using test::kNuTol;
 
 TEST(Stationary, ConstantAndNoisySeriesPass) {
   using detail::kStationaryMinSamples;
@@ -129,7 +130,7 @@ TEST(Stationary, StopsOnTheSameChainAndIsExact) {
     EXPECT_EQ(p.str_attrs.at("cache_key"), packing_key(s));
     EXPECT_EQ(packing_mismatch(p, s), "");
     EXPECT_EQ(assess_packing(p, nullptr).max_rel_overlap, 0.0);
-    EXPECT_NEAR(p.packing_fraction() / s.nu, 1.0, kStationaryNuTol);
+    EXPECT_NEAR(p.packing_fraction() / s.nu, 1.0, kNuTol);
     PackingSpec fixed = s;
     fixed.stop = EquilibrationStop::sweeps;
     fixed.sweeps = static_cast<int>(done);
