@@ -2,7 +2,10 @@
 // the field, exit status 2 (1 for an output that could not be written), no
 // file left behind, and finishes in seconds.
 #include <gtest/gtest.h>
+#include <fcntl.h>
 #include <hdf5.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstdlib>
@@ -296,6 +299,26 @@ TEST_F(Hostile, FullDiskIsAnError) {
   EXPECT_NE(WEXITSTATUS(st), 0);
   const int v = std::system((std::string(HGRID_BINARY) + " --version > /dev/full 2>/dev/null").c_str());
   EXPECT_NE(WEXITSTATUS(v), 0);
+}
+
+TEST_F(Hostile, OutputToAPipeIsWrittenInPlace) {
+  // `--xyz /dev/stdout` or a FIFO: written through, not replaced by a
+  // regular file (a rename over /dev/stdout, as root, replaced the machine's).
+  const std::string fifo = path("out.fifo");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const int reader = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);  // so that the writer's open does not block
+  ASSERT_GE(reader, 0);
+  std::ofstream(path("p.csv")) << "# box 4 4 4\n# boundary periodic\nx,y,z,r\n1,1,1,0.5\n3,3,3,0.5\n";
+  const Result r = hgrid_run("export " + path("p.csv") + " --xyz " + fifo + " --sizes 2");
+  EXPECT_EQ(r.status, 0) << r.err;
+  std::string got(4096, '\0');
+  const ssize_t n = ::read(reader, got.data(), got.size());
+  ::close(reader);
+  ASSERT_GT(n, 0);
+  got.resize(static_cast<std::size_t>(n));
+  EXPECT_EQ(got.substr(0, 2), "2\n") << got;  // extended XYZ: the particle count first
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  expect_no_temporaries();
 }
 
 // ---- the smaller ones -------------------------------------------------------------

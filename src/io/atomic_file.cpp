@@ -15,9 +15,17 @@ namespace fs = std::filesystem;
 
 void write_file_atomically(const std::string& path, const std::function<void(const std::string& tmp)>& write,
                            const std::string& field) {
+  std::error_code ec;
+  const fs::file_status target = fs::status(path, ec);  // through symlinks: /dev/stdout is one
+  if (!ec && fs::exists(target) && !fs::is_regular_file(target) && !fs::is_directory(target)) {
+    // A pipe, a device or a socket (/dev/stdout, /dev/null, a FIFO): written
+    // in place. A rename would replace it by a regular file (as root, the
+    // machine's /dev/stdout), and a stream has no partial file to avoid.
+    write(path);
+    return;
+  }
   static std::atomic<unsigned> counter{0};
   const std::string tmp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
-  std::error_code ec;
   try {
     write(tmp);
   } catch (...) {

@@ -13,7 +13,8 @@ namespace hgrid {
 /// process and call: "<path>.tmp.<pid>.<n>"), then renames it to `path`.
 /// Whatever fails (write throws, the rename fails: `path` is a directory, the
 /// disk is full), the temporary file is removed and nothing is left behind;
-/// a failed rename throws InputError naming `field`.
+/// a failed rename throws InputError naming `field`. A `path` that is a
+/// pipe, a device or a socket (/dev/stdout, a FIFO) is written in place.
 void write_file_atomically(const std::string& path, const std::function<void(const std::string& tmp)>& write,
                            const std::string& field = "out");
 
