@@ -58,10 +58,13 @@ double PyMixture::contact_value(int a, int b) const {
 static void moments(double k, double L, cplx e, cplx J[3]) {  // e = exp(i k L)
   const double x = k * L;
   if (std::fabs(x) >= 1.0) {
-    const cplx ik(0.0, k);
-    J[0] = (e - 1.0) / ik;
-    J[1] = (L * e - J[0]) / ik;
-    J[2] = (L * L * e - 2.0 * J[1]) / ik;
+    // z / (i k) = (Im z / k, -Re z / k): the quotient libgcc's complex
+    // division returns for finite z (its ratio c / d is 0 here), without
+    // the call.
+    const auto over_ik = [k](cplx z) { return cplx(z.imag() / k, -z.real() / k); };
+    J[0] = over_ik(e - 1.0);
+    J[1] = over_ik(L * e - J[0]);
+    J[2] = over_ik(L * L * e - 2.0 * J[1]);
     return;
   }
   // J_m = L^{m+1} sum_n (i x)^n / (n! (m + n + 1)); |x| < 1: stop once a term is below 1e-18.
