@@ -5,7 +5,7 @@ include(CMakePackageConfigHelpers)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/src/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/hgridlab
         FILES_MATCHING PATTERN "*.hpp" PATTERN "cli" EXCLUDE
         PATTERN "mpi" EXCLUDE)  # the tool's MPI layer: not installed (its library is not)
-install(FILES ${HGRID_INCLUDE}/hgridlab/grid/version.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/hgridlab/grid)
+install(FILES ${HGRID_VERSION_HPP} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/hgridlab/grid)
 # Two components, each with its own export file: core (the header-only grid,
 # whose one dependency is OpenMP) and hgridlab (the library, with HDF5, GSL,
 # nlohmann-json and toml++), so that a C++-only project can use the core.
