@@ -34,6 +34,11 @@ class CMakeBuild(build_ext):
             f"-DPython3_EXECUTABLE={sys.executable}",
             "-DHGRID_BUILD_PYTHON=ON", "-DHGRID_BUILD_TESTS=OFF", "-DHGRID_BUILD_BENCH=OFF",
             "-DHGRID_BUILD_CLI=OFF", "-DHGRID_INSTALL=OFF", "-DHGRID_MPI=OFF",
+            # A one-shot build: sources compiled in batches (the same code and
+            # flags, so the same module; 113 s against 156 s on 2 cores,
+            # docs/PERFORMANCE.md). `make` keeps one file per unit, which
+            # catches a source that leans on another's includes.
+            "-DCMAKE_UNITY_BUILD=ON",
         ]
         subprocess.run(config, check=True)
         jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL", str(os.cpu_count() or 2))
