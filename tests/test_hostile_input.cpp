@@ -317,6 +317,7 @@ TEST_F(Hostile, OutputToAPipeIsWrittenInPlace) {
   ASSERT_GT(n, 0);
   got.resize(static_cast<std::size_t>(n));
   EXPECT_EQ(got.substr(0, 2), "2\n") << got;  // extended XYZ: the particle count first
+  EXPECT_EQ(r.out, "");                        // the stream's name is not printed as a file written
   EXPECT_TRUE(fs::is_fifo(fifo));
   expect_no_temporaries();
 }

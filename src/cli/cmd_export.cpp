@@ -3,6 +3,7 @@
 // as files for viewers with each particle's level and cell (--xyz, --vtk).
 #include <cmath>
 #include <algorithm>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -70,8 +71,13 @@ void run_export(ExportOptions o) {
     const std::vector<double> sizes = o.sizes.empty() ? recommended_sizes(p, o.K) : parse_list(o.sizes, "sizes");
     g = place_in_grid(p, GridParams{sizes, Search::top_down});
   }
-  if (!o.xyz.empty()) write_extended_xyz(o.xyz, p, g), std::cout << o.xyz << "\n";
-  if (!o.vtk.empty()) write_legacy_vtk(o.vtk, p, g), std::cout << o.vtk << "\n";
+  // The files written, one per line on stdout; not a stream written in
+  // place (`--xyz /dev/stdout` is the data alone).
+  const auto written = [](const std::string& f) {
+    if (std::filesystem::is_regular_file(f)) std::cout << f << "\n";
+  };
+  if (!o.xyz.empty()) write_extended_xyz(o.xyz, p, g), written(o.xyz);
+  if (!o.vtk.empty()) write_legacy_vtk(o.vtk, p, g), written(o.vtk);
   if (!o.lammps.empty()) {
     export_lammps(o.lammps, p, s);
     std::cout << o.lammps << "/data.lmp\n" << o.lammps << "/in.multi.lmp\n" << o.lammps << "/in.bin.lmp\n";
