@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <sstream>
 #include <stdexcept>
 
@@ -35,15 +34,6 @@ bool same_packing(const PackingSpec& a, const PackingSpec& b) {
          a.sigma == b.sigma && a.boundary == b.boundary && a.placement == b.placement && a.method == b.method &&
          a.seed == b.seed &&
          a.equilibrate == b.equilibrate && a.sweeps == b.sweeps;
-}
-
-std::string utc_now() {
-  const std::time_t t = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
 }
 
 }  // namespace

@@ -15,6 +15,9 @@ const char* compiler_id();
 /// The build type and compile flags that matter for results.
 const char* build_flags();
 
+/// Now, in UTC as ISO 8601 ("2026-12-04T05:06:40Z"): when a result was made.
+std::string utc_now();
+
 /// The provenance of a result, written as attributes or keys of every output.
 struct Provenance {
   std::string version, git_hash, compiler, flags;

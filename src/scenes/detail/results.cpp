@@ -1,7 +1,6 @@
 #include "hgridlab/scenes/detail/results.hpp"
 
 #include <cmath>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -15,17 +14,6 @@
 #include "hgridlab/measure/fields.hpp"
 
 namespace hgrid {
-namespace {
-
-std::string utc_now() {
-  std::time_t t = std::time(nullptr);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
-  return buf;
-}
-
-}  // namespace
-
 namespace {
 /// The measurement's fields a scene records (measure/fields.hpp names them).
 constexpr std::string_view kMeasuredFields[] = {
