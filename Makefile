@@ -58,7 +58,8 @@ test-clang:
 	cd build-clang && ctest --output-on-failure -j $(JOBS)
 
 # The libFuzzer targets of the readers (CSV, HDF5, scene, journal), built with
-# clang++ and run FUZZ_SECONDS each (needs Debian's clang).
+# clang++ and run FUZZ_SECONDS each, side by side, one per core (needs
+# Debian's clang).
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS = fuzz_csv fuzz_particles fuzz_hdf5 fuzz_scene fuzz_journal
 fuzz:
