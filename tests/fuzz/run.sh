@@ -10,10 +10,14 @@ cd "$(dirname "$0")/../.."
 build=${1:-build-fuzz}
 seconds=${2:-60}
 jobs=${FUZZ_JOBS:-$(nproc 2>/dev/null || echo 1)}  # targets run side by side, one core each
+case "$jobs" in
+  '' | *[!0-9]* | 0) echo "tests/fuzz/run.sh: FUZZ_JOBS must be a whole number >= 1 (got '$jobs')" >&2; exit 2 ;;
+esac
 
 # One target: its kept crash inputs, then SECONDS of fuzzing; what it says
 # goes to $build/fuzz_$target.out (printed in order at the end).
 fuzz_one() {
+  # work: the growing corpus, kept out of the repository
   local target=$1 bin="$build/fuzz_$1" work="$build/fuzz-corpus/$1" log="$build/fuzz_$1.log" rc=0
   mkdir -p "$work"
   shopt -s nullglob
@@ -39,6 +43,7 @@ fuzz_one() {
   fi
 }
 
+mkdir -p "$build"  # each target's lines go to a file there
 targets=(csv particles scene journal hdf5)
 # Lane k runs targets k, k + jobs, ... one after another; the lanes side by side.
 lanes=()
