@@ -18,8 +18,9 @@ namespace hgrid::detail {
 /// 2: the growth + FIRE route sums forces over sorted neighbour lists, so that
 /// its packings no longer depend on the HGrid's pair order (version 1's did,
 /// and changed with the query's traversal). 3: growth steps of 2 % relaxed
-/// to 5e-3 (were 0.5 % and 2e-3).
-inline constexpr int kGeneratorVersion = 3;
+/// to 5e-3 (were 0.5 % and 2e-3). 4: FIRE's masses are the spheres'
+/// stiffness sums (kFireMassFloor; were one).
+inline constexpr int kGeneratorVersion = 4;
 
 /// Names of the attributes that carry an equilibration's state.
 inline constexpr const char* kChainAttr = "equilibration_chain";

@@ -1,8 +1,9 @@
 // Growth + FIRE. Energy E = 1/2 sum_pairs (delta_ij / sigma_ij)^2 with delta
 // the overlap and sigma = r_i + r_j: the relative overlaps, which is also the
-// convergence criterion. Unit masses; a pair's stiffness 1/sigma^2 makes a big
-// sphere with many small neighbours no stiffer than a small one, so one time
-// step suits all. Contacts come from a Verlet list (skin kSkin r_i) built with
+// convergence criterion. A pair's stiffness 1/sigma^2 makes a big sphere with
+// many small neighbours about as stiff as a small one, but the spheres'
+// stiffness sums still span a factor ~50; each sphere's mass is its sum
+// (kFireMassFloor), so one time step suits all. Contacts come from a Verlet list (skin kSkin r_i) built with
 // the HGrid and rebuilt only when a sphere has moved or grown through its skin;
 // its partner lists are sorted, so the packing does not depend on the grid.
 //
@@ -82,7 +83,9 @@ class Relaxer {
   const std::vector<Vec>& positions() const { return x_; }
 
  private:
-  /// FIRE's sums over the spheres: power f.v and the squared norms.
+  /// FIRE's sums over the spheres: power f.v and the squared norms in the
+  /// mass metric, v.m.v and f.m^-1.f (FIRE on the coordinates sqrt(m) x,
+  /// where every mass is one).
   struct Sums {
     double P = 0, vv = 0, ff = 0;
   };
@@ -90,10 +93,11 @@ class Relaxer {
   /// Adds sphere i's terms to the sums (in the one order every thread count uses:
   /// spheres in increasing i, axes in increasing k).
   void add_sums(std::size_t i, Sums& s) const {
+    const double w = w_[i];
     for (int k = 0; k < D; ++k) {
       s.P += f_[i][k] * v_[i][k];
-      s.vv += v_[i][k] * v_[i][k];
-      s.ff += f_[i][k] * f_[i][k];
+      s.vv += v_[i][k] * v_[i][k] / w;
+      s.ff += w * f_[i][k] * f_[i][k];
     }
   }
 
@@ -128,7 +132,7 @@ class Relaxer {
   }
 
   /// One FIRE move of every sphere (velocities zeroed if uphill, else
-  /// keep v + mix f; then v += dt f, x += dt v): one pass, on the threads.
+  /// keep v + mix f / m; then v += dt f / m, x += dt v): one pass, on the threads.
   /// Returns whether the list must be rebuilt before the next forces.
   bool advance(bool uphill, double keep, double mix, double dt) {
     // What the loop reads besides the arrays it writes, in locals: the
@@ -137,6 +141,7 @@ class Relaxer {
     const Extent<D> box = box_;
     const double* const skin2 = skin2_.data();
     const Vec* const f = f_.data();
+    const double* const w = w_.data();
     const Vec* const xref = xref_.data();
     Vec* const v = v_.data();
     Vec* const x = x_.data();
@@ -148,8 +153,9 @@ class Relaxer {
     for (std::int64_t s = 0; s < n; ++s) {
       const auto i = static_cast<std::size_t>(s);
       for (int k = 0; k < D; ++k) {
-        double vk = uphill ? 0.0 : keep * v[i][k] + mix * f[i][k];
-        vk += dt * f[i][k];
+        const double wf = w[i] * f[i][k];
+        double vk = uphill ? 0.0 : keep * v[i][k] + mix * wf;
+        vk += dt * wf;
         v[i][k] = vk;
         double y = x[i][k] + dt * vk;
         if constexpr (B == Boundary::periodic) y = wrap(y, box[k]);
@@ -185,7 +191,16 @@ class Relaxer {
       }
     double kmax = 0;
     for (std::size_t i = 0; i < n; ++i) kmax = std::max(kmax, k[i] + (B == Boundary::walls ? D / (lambda_ * lambda_ * r_[i] * r_[i]) : 0.0));
-    dt_max_ = kmax > 0 ? 1.0 / std::sqrt(kmax) : 1.0;
+    // Masses: each sphere's stiffness sum, at least kFireMassFloor of the
+    // stiffest's (see there), so that every sphere's natural period is about
+    // one time unit and dt_max = 1 is stable.
+    w_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double ki = k[i] + (B == Boundary::walls ? D / (lambda_ * lambda_ * r_[i] * r_[i]) : 0.0);
+      const double m = std::max(ki, kFireMassFloor * kmax);
+      w_[i] = m > 0 ? 1.0 / m : 1.0;
+    }
+    dt_max_ = 1.0;
     cut_ranges();
   }
 
@@ -328,6 +343,7 @@ class Relaxer {
   }
 
   Extent<D> box_;
+  std::vector<double> w_;  // inverse masses, set with the list
   std::vector<double> r_, rs_, skin2_;  // radii; at the current scale; squared skin margins
   std::vector<Vec> x_, v_, f_, xref_;
   std::vector<std::uint32_t> start_, nbr_;

@@ -25,6 +25,19 @@ inline constexpr double kFinalOverlapTol = 1e-4;
 /// FIRE step budget per growth step and in total.
 inline constexpr std::uint64_t kFireStepsPerGrowth = 20000;
 inline constexpr std::uint64_t kFireStepsTotal = 400000;
+/// FIRE's masses: each sphere's stiffness sum (its list pairs' 1/sigma^2,
+/// plus its walls'), at least this share of the stiffest sphere's. With unit
+/// masses the stiffest sphere sets the time step and the rest relax up to
+/// ~7x slower in time (the sums span a factor ~50 at omega = 10); masses
+/// equal to the stiffness (a diagonal, Jacobi, preconditioner of the
+/// minimisation) give every sphere a period of about one time unit and dt_max
+/// = 1. The floor keeps the softest spheres from flying through their skins
+/// (uncapped, the lists were rebuilt up to 1.8x as often). N = 10^5, nu = 0.6,
+/// omega = 10, one thread: the compression 21.0/22.2 -> 10.0/10.1 s (walls,
+/// alpha = 0), 15.5/16.7 -> 10.3/11.4 s (walls, alpha = -3), 10.4/10.1 ->
+/// 8.5/8.3 s and 11.0/10.5 -> 9.2/9.3 s (periodic, alpha = 0 and -3);
+/// docs/PERFORMANCE.md round 38.
+inline constexpr double kFireMassFloor = 0.1;
 /// Verlet skin of the neighbour list, relative to each radius.
 inline constexpr double kSkin = 0.25;
 /// Spheres per thread below which generate_packing relaxes on fewer threads
@@ -41,7 +54,7 @@ struct RelaxStats {
 /// Starts from non-overlapping centres pos (n x d) of spheres of radius
 /// scale0 * radii and grows them to radii (scale 1) in steps of kGrowthStep,
 /// relaxing with FIRE (Bitzek et al., Phys. Rev. Lett. 97, 170201 (2006);
-/// unit masses, unit stiffness) after each step. With walls, spheres also
+/// unit stiffness, masses as kFireMassFloor says) after each step. With walls, spheres also
 /// feel a harmonic wall. Returns false (stats say how far it got) when a step
 /// budget runs out. Lists, forces and moves run on `threads` threads; the
 /// result does not depend on their number.
