@@ -3,9 +3,10 @@
 // convergence criterion. A pair's stiffness 1/sigma^2 makes a big sphere with
 // many small neighbours about as stiff as a small one, but the spheres'
 // stiffness sums still span a factor ~50; each sphere's mass is its sum
-// (kFireMassFloor), so one time step suits all. Contacts come from a Verlet list (skin kSkin r_i) built with
-// the HGrid and rebuilt only when a sphere has moved or grown through its skin;
-// its partner lists are sorted, so the packing does not depend on the grid.
+// (kFireMassFloor), so one time step suits all. Contacts come from a Verlet
+// list (skin kSkin r_i) built with the HGrid and rebuilt only when a sphere
+// has moved or grown through its skin; its partner lists are sorted, so the
+// packing does not depend on the grid.
 //
 // Threads: the spheres (in spatial order) are cut into one range per thread,
 // balanced by list pairs. A sphere's force is the sum, in canonical order, of

@@ -54,10 +54,10 @@ struct RelaxStats {
 /// Starts from non-overlapping centres pos (n x d) of spheres of radius
 /// scale0 * radii and grows them to radii (scale 1) in steps of kGrowthStep,
 /// relaxing with FIRE (Bitzek et al., Phys. Rev. Lett. 97, 170201 (2006);
-/// unit stiffness, masses as kFireMassFloor says) after each step. With walls, spheres also
-/// feel a harmonic wall. Returns false (stats say how far it got) when a step
-/// budget runs out. Lists, forces and moves run on `threads` threads; the
-/// result does not depend on their number.
+/// unit stiffness, masses as kFireMassFloor says) after each step. With
+/// walls, spheres also feel a harmonic wall. Returns false (stats say how
+/// far it got) when a step budget runs out. Lists, forces and moves run on
+/// `threads` threads; the result does not depend on their number.
 bool grow_and_relax(int d, Boundary b, const std::array<double, 3>& box, const std::vector<double>& radii,
                     double scale0, int threads, std::vector<double>& pos, Progress& progress, RelaxStats& stats);
 
