@@ -33,6 +33,9 @@ namespace {
 // FIRE parameters (Bitzek et al. 2006, their recommended values).
 constexpr int kFireNmin = 5;
 constexpr double kFireFinc = 1.1, kFireFdec = 0.5, kFireAlpha0 = 0.1, kFireFalpha = 0.99;
+// Largest time step: one, as the masses (kFireMassFloor) make every sphere's
+// period about one time unit.
+constexpr double kFireDtMax = 1.0;
 
 template <int D, Boundary B>
 class Relaxer {
@@ -50,15 +53,11 @@ class Relaxer {
     for (std::size_t i = 0; i < r_.size(); ++i) rs_[i] = lambda_ * r_[i];
     set_margins();
     for (auto& v : v_) v.fill(0.0);
-    double dt_max = dt_max_, dt = 0.1 * dt_max, alpha = kFireAlpha0;
+    double dt = 0.1 * kFireDtMax, alpha = kFireAlpha0;
     int positive = 0;
     bool rebuild = needs_rebuild();
     for (std::uint64_t step = 0;; ++step) {
-      if (rebuild) {
-        build_list();
-        dt_max = dt_max_;
-        dt = std::min(dt, dt_max);
-      }
+      if (rebuild) build_list();
       Sums sums;
       max_rel = forces(sums);
       if (max_rel < tol) return step;
@@ -68,7 +67,7 @@ class Relaxer {
       const double keep = 1 - alpha, mix = !uphill && ff > 0 ? alpha * std::sqrt(vv / ff) : 0.0;
       if (!uphill) {
         if (++positive > kFireNmin) {
-          dt = std::min(dt * kFireFinc, dt_max);
+          dt = std::min(dt * kFireFinc, kFireDtMax);
           alpha *= kFireFalpha;
         }
       } else {
@@ -181,7 +180,8 @@ class Relaxer {
       xref_[i] = x_[i];
     }
     neighbour_lists<D, B>(std::span<const Sphere<D>>(s), box_, start_, nbr_, threads_);  // sorted: see there
-    // Stiffest sphere: sum of its pairs' stiffness 1/sigma^2 (an upper bound).
+    // Each sphere's stiffness: the sum of its list pairs' 1/sigma^2 (an upper
+    // bound on its touching pairs') and its walls'.
     std::vector<double> k(n, 0.0);
     for (std::size_t i = 0; i < n; ++i)
       for (std::uint32_t m = start_[i]; m < start_[i + 1]; ++m) {
@@ -191,17 +191,18 @@ class Relaxer {
         k[j] += 1 / (sig * sig);
       }
     double kmax = 0;
-    for (std::size_t i = 0; i < n; ++i) kmax = std::max(kmax, k[i] + (B == Boundary::walls ? D / (lambda_ * lambda_ * r_[i] * r_[i]) : 0.0));
-    // Masses: each sphere's stiffness sum, at least kFireMassFloor of the
+    for (std::size_t i = 0; i < n; ++i) {
+      if constexpr (B == Boundary::walls) k[i] += D / (lambda_ * lambda_ * r_[i] * r_[i]);
+      kmax = std::max(kmax, k[i]);
+    }
+    // Masses: each sphere's stiffness, at least kFireMassFloor of the
     // stiffest's (see there), so that every sphere's natural period is about
-    // one time unit and dt_max = 1 is stable.
+    // one time unit and kFireDtMax is stable.
     w_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-      const double ki = k[i] + (B == Boundary::walls ? D / (lambda_ * lambda_ * r_[i] * r_[i]) : 0.0);
-      const double m = std::max(ki, kFireMassFloor * kmax);
+      const double m = std::max(k[i], kFireMassFloor * kmax);
       w_[i] = m > 0 ? 1.0 / m : 1.0;
     }
-    dt_max_ = 1.0;
     cut_ranges();
   }
 
@@ -350,7 +351,7 @@ class Relaxer {
   std::vector<std::uint32_t> start_, nbr_;
   int threads_ = 1;
   std::vector<std::uint32_t> range_, cross_start_, cross_i_;
-  double lambda_ = 1, built_lambda_ = 1, dt_max_ = 1;
+  double lambda_ = 1, built_lambda_ = 1;
   int builds_ = 0;
 };
 
