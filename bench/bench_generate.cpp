@@ -3,7 +3,8 @@
 //   excluded volume, alpha = -3, omega = 100, nu = 0.6 (target <= 2 min, zero overlap)
 //   excluded volume, alpha = 0, omega = 10, nu = 0.6   (target <= 15 min, max rel. overlap <= 1e-4)
 //   hard-sphere Monte Carlo with swaps, N = 1e5: sweeps/s and moves/s per thread,
-//   Metropolis moves and event chains in one run
+//   Metropolis moves (overlap tests on move lists, and on the grid alone) and
+//   event chains in one run
 // Run one at a time (the peak-memory counter is per process):
 //   build/bench_generate --benchmark_filter='Rsa/1000000/'
 #include <benchmark/benchmark.h>
@@ -61,7 +62,7 @@ void run(benchmark::State& state, double alpha, double omega, Placement placemen
 /// of the binary times both kinds (issue 56's A/B); what a sweep of each
 /// buys is in docs/MODEL.md section 8 (event chains relax the large
 /// particles in tens of sweeps where Metropolis moves take thousands).
-void monte_carlo(benchmark::State& state, EquilibrationMoves moves) {
+void monte_carlo(benchmark::State& state, EquilibrationMoves moves, OverlapSearch search = OverlapSearch::lists) {
   constexpr int kSweeps = 20;
   PackingSpec s;
   s.d = 3;
@@ -78,6 +79,7 @@ void monte_carlo(benchmark::State& state, EquilibrationMoves moves) {
   e.sweeps = kSweeps;
   e.moves = moves;
   e.threads = static_cast<int>(state.range(1));
+  e.overlap_search = search;
   for (auto _ : state) {
     Packing p = generate_packing(e, &placed);
     benchmark::DoNotOptimize(p.radii.data());
@@ -90,6 +92,11 @@ void monte_carlo(benchmark::State& state, EquilibrationMoves moves) {
 }
 
 void BM_MonteCarlo(benchmark::State& state) { monte_carlo(state, EquilibrationMoves::metropolis); }
+/// The same Metropolis sweeps with every overlap test on the insertion grid
+/// (the test the move lists replaced; the same packing): the A/B in one run.
+void BM_MonteCarloGridTests(benchmark::State& state) {
+  monte_carlo(state, EquilibrationMoves::metropolis, OverlapSearch::grid);
+}
 void BM_EventChain(benchmark::State& state) { monte_carlo(state, EquilibrationMoves::event_chain); }
 
 void BM_Random(benchmark::State& state) { run(state, -3, 100, Placement::random); }
@@ -99,6 +106,7 @@ void BM_Growth(benchmark::State& state) { run(state, 0, 10, Placement::excluded)
 BENCHMARK(BM_Random)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_Rsa)->Arg(100000)->Arg(1000000)->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(BM_MonteCarlo)->Args({10, 1})->Args({10, 2})->Args({100, 1})->Args({100, 2})->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_MonteCarloGridTests)->Args({10, 1})->Args({10, 2})->Args({100, 1})->Args({100, 2})->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(BM_EventChain)->Args({10, 1})->Args({100, 1})->Unit(benchmark::kSecond)->Iterations(1);
 BENCHMARK(BM_Growth)->Arg(100000)->Arg(1000000)->Unit(benchmark::kSecond)->Iterations(1);
 

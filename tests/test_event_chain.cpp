@@ -4,10 +4,12 @@
 // radii kept, resumable bit for bit, walls refused).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
+#include <random>
 #include <unistd.h>
 #include <vector>
 
@@ -98,6 +100,41 @@ PackingSpec chain_spec(int d, double nu, ExcludedMethod method) {
 // From sequential addition (no overlap) and from compression (overlaps up
 // to 1e-4): radii and nu kept, pairs overlapping by at most the chains'
 // shrink, the positions moved; the number of threads changes nothing.
+// The insertion grid's two box visits (visit_box, one list at a time;
+// visit_box_all, heads fetched a batch ahead) meet the same spheres, each
+// once, for boxes from a fraction of a cell to wider than the box.
+TEST(EventChain, BatchedBoxVisitMeetsTheSameSpheres) {
+  constexpr std::uint64_t kSeed = 7;
+  std::mt19937_64 rng(kSeed);
+  std::uniform_real_distribution<double> u(0, 1);
+  const Extent<3> box{40, 30, 50};
+  std::vector<double> radii(3000);
+  for (double& r : radii) r = 1 + 9 * std::pow(u(rng), 4);
+  detail::InsertGrid<3, Boundary::periodic> grid(box, radii);
+  for (std::uint32_t i = 0; i < radii.size(); ++i) grid.insert(i, {u(rng) * 40, u(rng) * 30, u(rng) * 50}, radii[i]);
+  for (int trial = 0; trial < 200; ++trial) {
+    SCOPED_TRACE("trial " + std::to_string(trial) + " seed " + std::to_string(kSeed));
+    const std::array<double, 3> x{u(rng) * 40, u(rng) * 30, u(rng) * 50};
+    std::array<double, 3> lo, hi;
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = -u(rng) * (trial % 10 == 0 ? 40 : 8);
+      hi[k] = u(rng) * 8;
+    }
+    for (int l = 0; l < grid.levels(); ++l) {
+      std::vector<std::uint32_t> one, all;
+      grid.visit_box(l, x, lo, hi, [&](std::uint32_t q, const std::array<double, 3>&, double) {
+        one.push_back(q);
+        return true;
+      });
+      grid.visit_box_all(l, x, lo, hi, [&](std::uint32_t q, const std::array<double, 3>&, double) { all.push_back(q); });
+      std::sort(one.begin(), one.end());
+      std::sort(all.begin(), all.end());
+      EXPECT_EQ(one, all) << "level " << l;
+      EXPECT_EQ(std::adjacent_find(all.begin(), all.end()), all.end()) << "level " << l;
+    }
+  }
+}
+
 TEST(EventChain, EquilibratesPackingsWithinItsShrink) {
   for (const auto& [d, nu, method] : std::vector<std::tuple<int, double, ExcludedMethod>>{
            {3, 0.5, ExcludedMethod::rsa}, {3, 0.6, ExcludedMethod::growth}, {2, 0.7, ExcludedMethod::growth}}) {

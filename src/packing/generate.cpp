@@ -384,7 +384,7 @@ Packing generate_packing(const PackingSpec& s, const Packing* from, const Packin
       };
     detail::equilibrate(s.d, s.boundary, s.moves == EquilibrationMoves::event_chain, p.box, p.radii, p.positions,
                         static_cast<std::uint64_t>(s.sweeps), s.threads, rng, progress, e, save, s.checkpoint_seconds,
-                        observe);
+                        observe, s.overlap_search);
   }
   if (s.boundary == Boundary::periodic)
     for (std::size_t i = 0; i < p.positions.size(); ++i) p.positions[i] = detail::wrap(p.positions[i], p.box[i % s.d]);

@@ -7,6 +7,7 @@
 #include "hgridlab/base/threads.hpp"
 #include "hgridlab/packing/detail/gen_event_chain.hpp"
 #include "hgridlab/packing/detail/gen_insert_grid.hpp"
+#include "hgridlab/packing/detail/gen_move_lists.hpp"
 
 namespace hgrid::detail {
 namespace {
@@ -52,13 +53,16 @@ struct Tally {
 template <int D, Boundary B>
 class Checkerboard {
  public:
-  Checkerboard(const Extent<D>& box, const std::vector<double>& radii, std::vector<double>& pos)
+  Checkerboard(const Extent<D>& box, const std::vector<double>& radii, std::vector<double>& pos,
+               OverlapSearch search)
       : box_(box),
         radii_(radii),
         pos_(pos),
         fitting_(fitting(box, radii)),
         width_(width(box, fitting_)),
-        grid_(box, radii, width_, domains(fitting_)) {
+        grid_(box, radii, width_, domains(fitting_)),
+        use_lists_(search == OverlapSearch::lists),
+        lists_(box, kListHalfSkin) {
     const auto nd = domains(fitting_);
     std::size_t total = 1;
     for (int k = 0; k < D; ++k) total *= static_cast<std::size_t>(nd[k]);
@@ -67,7 +71,8 @@ class Checkerboard {
     members_.assign(radii.size(), 0);
     slot_of_.assign(radii.size(), 0);
     node_.assign(radii.size(), 0);
-    order_.assign(radii.size(), 0);
+    node_of_.assign(radii.size(), 0);
+    particle_at_.assign(radii.size(), 0);
     level_.resize(radii.size());
     for (std::size_t i = 0; i < radii.size(); ++i) level_[i] = grid_.level_of(radii[i]);
     dom_.assign(radii.size(), 0);
@@ -113,13 +118,26 @@ class Checkerboard {
     // the cells it is filed under (a counting sort), so the spheres a scan
     // meets lie near each other in memory. Nodes only place the spheres in
     // memory: which spheres a test meets, and so every outcome, is the same.
-    grid_.rank_by_cell(n, [&](std::size_t i) { return at(i); }, level_, rank_);
-    for (std::size_t i = 0; i < n; ++i) node_[slot_of_[i]] = rank_[i];
-    for (std::size_t slot = 0; slot < n; ++slot) order_[node_[slot]] = static_cast<std::uint32_t>(slot);
+    // On one thread the trials are tested on the move lists (which name
+    // nodes): the nodes are numbered afresh with the lists and kept in
+    // between (the spheres move little between two numberings). On several
+    // the grid alone tests them (the lists would name spheres of other
+    // domains of the running colour).
+    const bool had_lists = lists_on_;
+    lists_on_ = use_lists_ && threads <= 1 && !lists_lose_;
+    const bool renumber = !lists_on_ || !had_lists || lists_.unlisted() > n / kRelistUnlistedShare ||
+                          lists_.relisted() > kRelistPerSphere * n;
+    if (renumber) {
+      grid_.rank_by_cell(n, [&](std::size_t i) { return at(i); }, level_, node_of_);
+      for (std::size_t i = 0; i < n; ++i) particle_at_[node_of_[i]] = static_cast<std::uint32_t>(i);
+    }
+    for (std::size_t slot = 0; slot < n; ++slot) node_[slot] = node_of_[members_[slot]];
     for (std::size_t nd = 0; nd < n; ++nd) {
-      const std::uint32_t i = members_[order_[nd]];
+      const std::uint32_t i = particle_at_[nd];
       grid_.insert(static_cast<std::uint32_t>(nd), at(i), radii_[i], level_[i]);
     }
+    if (lists_on_ && renumber) lists_.build(grid_, n, threads);
+    const std::size_t relisted_before = lists_.relisted();
     update_suspects(threads);
     // The tallies are integer sums: the same in any order.
     std::uint64_t accepted = 0, proposed = 0, swapped = 0, swaps = 0;
@@ -137,6 +155,9 @@ class Checkerboard {
       }
     }
     (void)threads;
+    // Spheres that move far between sweeps (loose packings) are relisted
+    // more often than their lists save: then the grid alone, for the run.
+    if (lists_on_ && lists_.relisted() - relisted_before > n / kRelistsWorthLists) lists_lose_ = true;
     for (std::size_t slot = 0; slot < n; ++slot)
       for (int k = 0; k < D; ++k) pos_[members_[slot] * D + k] = grid_.position(node_[slot])[k];
     return Tally{accepted, proposed, swapped, swaps};
@@ -219,13 +240,59 @@ class Checkerboard {
     if (grid_.domain_at(xj, grid_.level(i)) != c || grid_.domain_at(xi, grid_.level(j)) != c) return false;
     const bool i_fits = ri <= rj && !suspect_[members_[sj]];
     const bool j_fits = rj <= ri && !suspect_[members_[si]];
-    grid_.erase(i);
-    grid_.erase(j);
-    const bool ok = (i_fits || !grid_.overlaps(xj, ri, 0)) && (j_fits || !grid_.overlaps(xi, rj, 0));
-    grid_.insert(i, ok ? xj : xi, ri);
-    grid_.insert(j, ok ? xi : xj, rj);
-    return ok;
+    bool ok;
+    // Sphere i in j's place is tested on j's move list (skipping i), where
+    // that is exact, and so is j in i's place; else both on the grid.
+    // (The grid's levels above the listed ones hold neither: j's place is
+    // tested on j's list only when j is of a listed level.)
+    const bool i_listed = i_fits || (listed(j) && lists_.covers(j, xj, ri));
+    const bool j_listed = j_fits || (listed(i) && lists_.covers(i, xi, rj));
+    if (i_listed && j_listed) {
+      const int above = lists_.levels();
+      ok = (i_fits || !(lists_.overlaps(grid_, j, xj, ri, i) || grid_.overlaps(xj, ri, above, i))) &&
+           (j_fits || !(lists_.overlaps(grid_, i, xi, rj, j) || grid_.overlaps(xi, rj, above, j)));
+    } else {
+      grid_.erase(i);
+      grid_.erase(j);
+      ok = (i_fits || !grid_.overlaps(xj, ri, 0)) && (j_fits || !grid_.overlaps(xi, rj, 0));
+      grid_.insert(i, xi, ri);
+      grid_.insert(j, xj, rj);
+    }
+    if (!ok) return false;
+    if (lists_on_ && grid_.level(i) == grid_.level(j)) {
+      // The nodes keep their places and exchange radii (and particles), so
+      // that their move lists stay valid within their budgets.
+      grid_.set_radius(i, rj);
+      grid_.set_radius(j, ri);
+      std::swap(node_[si], node_[sj]);
+      std::swap(node_of_[members_[si]], node_of_[members_[sj]]);
+      particle_at_[i] = members_[sj];
+      particle_at_[j] = members_[si];
+    } else {
+      grid_.erase(i);
+      grid_.erase(j);
+      grid_.insert(i, xj, ri);
+      grid_.insert(j, xi, rj);
+    }
+    return true;
   }
+
+  /// Node a relisted if it has moved (or grown) beyond its list budget.
+  void relist_if_escaped(std::uint32_t a) {
+    if (listed(a) && !lists_.within(a, grid_.position(a), grid_.radius(a))) lists_.relist(grid_, a);
+  }
+
+  /// Whether node i (radius r) at x would overlap another sphere: on its
+  /// move list and the grid's levels above the listed ones where that is
+  /// exact, else on the grid.
+  bool move_overlaps(std::uint32_t i, const std::array<double, D>& x, double r) const {
+    if (listed(i) && lists_.covers(i, x, r))
+      return lists_.overlaps(grid_, i, x, r) || grid_.overlaps(x, r, lists_.levels(), i);
+    return grid_.overlaps(x, r, 0, i);
+  }
+
+  /// Whether the move lists are on and hold node a's level.
+  bool listed(std::uint32_t a) const { return lists_on_ && grid_.level(a) < lists_.levels(); }
 
   Tally run_domain(std::uint32_t c, std::uint64_t seed) {
     Tally t;
@@ -238,7 +305,11 @@ class Checkerboard {
       if (rng.uniform() < kSwapFraction) {
         const std::uint32_t sj = first + static_cast<std::uint32_t>(rng.bits() % count);
         ++t.swaps;
-        if (sj != si && try_swap(si, sj, c)) ++t.swapped;
+        if (sj != si && try_swap(si, sj, c)) {
+          ++t.swapped;
+          relist_if_escaped(node_[si]);
+          relist_if_escaped(node_[sj]);
+        }
         continue;
       }
       const std::uint32_t i = node_[si];
@@ -249,9 +320,11 @@ class Checkerboard {
         if constexpr (B == Boundary::periodic) x[k] = wrap(x[k], box_[k]);
       }
       ++t.proposed;
-      if (!inside<D, B>(x, r, box_) || grid_.domain_at(x, grid_.level(i)) != c || grid_.overlaps(x, r, 0, i)) continue;
+      if (!inside<D, B>(x, r, box_) || grid_.domain_at(x, grid_.level(i)) != c || move_overlaps(i, x, r))
+        continue;
       grid_.move(i, x);
       ++t.accepted;
+      relist_if_escaped(i);
     }
     return t;
   }
@@ -266,14 +339,18 @@ class Checkerboard {
   std::vector<std::size_t> start_, fill_, dom_;
   std::vector<std::uint32_t> members_;  // slot -> particle
   std::vector<std::uint32_t> slot_of_;  // particle -> slot
-  std::vector<std::uint32_t> node_;     // slot -> grid node
-  std::vector<std::uint32_t> order_;    // grid node -> slot
-  std::vector<std::uint32_t> rank_;    // particle -> grid node (rank_by_cell)
+  std::vector<std::uint32_t> node_;         // slot -> grid node
+  std::vector<std::uint32_t> node_of_;      // particle -> grid node (rank_by_cell)
+  std::vector<std::uint32_t> particle_at_;  // grid node -> particle
   std::vector<int> level_;  // particle -> its grid level
   // Particles that may overlap another (a superset; see update_suspects).
   std::vector<char> suspect_;
   std::vector<std::uint32_t> suspects_;
   bool suspects_known_ = false;
+  // The move lists (gen_move_lists.hpp): asked for; on (one thread).
+  bool use_lists_;
+  bool lists_on_ = false, lists_lose_ = false;
+  MoveLists<D, B> lists_;
 };
 
 template <class Sweeper>
@@ -322,7 +399,7 @@ template <int D, Boundary B>
 void run(bool event_chain, const std::array<double, 3>& box3, const std::vector<double>& radii,
          std::vector<double>& pos, std::uint64_t target, int threads, GenRng& rng, Progress& progress,
          Equilibration& e, const EquilibrationCheckpoint& checkpoint, double checkpoint_seconds,
-         const EquilibrationObserver& observe) {
+         const EquilibrationObserver& observe, OverlapSearch search) {
   Extent<D> box;
   for (int k = 0; k < D; ++k) box[k] = box3[k];
   if constexpr (B == Boundary::periodic)
@@ -331,7 +408,7 @@ void run(bool event_chain, const std::array<double, 3>& box3, const std::vector<
       sweeps(chains, target, 1, rng, progress, e, checkpoint, checkpoint_seconds, observe);
       return;
     }
-  Checkerboard<D, B> board(box, radii, pos);
+  Checkerboard<D, B> board(box, radii, pos, search);
   sweeps(board, target, resolve_threads(threads), rng, progress, e, checkpoint, checkpoint_seconds, observe);
 }
 
@@ -340,9 +417,10 @@ void run(bool event_chain, const std::array<double, 3>& box3, const std::vector<
 void equilibrate(int d, Boundary b, bool event_chain, const std::array<double, 3>& box, const std::vector<double>& radii,
                  std::vector<double>& pos, std::uint64_t target, int threads, GenRng& rng, Progress& progress,
                  Equilibration& e, const EquilibrationCheckpoint& checkpoint, double checkpoint_seconds,
-                 const EquilibrationObserver& observe) {
+                 const EquilibrationObserver& observe, OverlapSearch search) {
   const auto go = [&](auto run_one) {
-    run_one(event_chain, box, radii, pos, target, threads, rng, progress, e, checkpoint, checkpoint_seconds, observe);
+    run_one(event_chain, box, radii, pos, target, threads, rng, progress, e, checkpoint, checkpoint_seconds, observe,
+            search);
   };
   if (d == 2) {
     if (b == Boundary::walls) go(run<2, Boundary::walls>);

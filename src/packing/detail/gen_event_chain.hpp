@@ -200,8 +200,8 @@ class EventChain {
       hi.fill(reach);
       lo[k] = 0;
       hi[k] = ahead + reach * (1 + kScanMargin);
-      grid_.visit_box(l, xa, lo, hi, [&](std::uint32_t q, const Vec& xq, double rq) {
-        if (q == a) return true;
+      grid_.visit_box_all(l, xa, lo, hi, [&](std::uint32_t q, const Vec& xq, double rq) {
+        if (q == a) return;
         // Across the path: the nearest image (the box is at least 4 r_max
         // wide, so only one lies within r_a + r_q); the same all along it.
         double b2 = 0;
@@ -212,9 +212,8 @@ class EventChain {
         }
         const double sig = ra + rq;
         const double h2 = sig * sig - b2;
-        if (h2 <= 0) return true;  // passes beside it
+        if (h2 <= 0) return;  // passes beside it
         ahead_.push_back(Ahead{xq[k], std::sqrt(h2), sig, q});
-        return true;
       });
     }
   }

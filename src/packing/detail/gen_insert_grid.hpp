@@ -158,42 +158,53 @@ class InsertGrid {
   void visit_box(int l, const std::array<double, D>& x, const std::array<double, D>& lo,
                  const std::array<double, D>& hi, F&& f) const {
     const Level& lv = levels_[l];
-    if (lv.rmax == 0) return;
     std::array<std::int64_t, D> first, cnt;
-    for (int k = 0; k < D; ++k) {
-      first[k] = static_cast<std::int64_t>(std::floor((x[k] + lo[k] - lv.o[k]) / lv.s[k]));
-      std::int64_t last = static_cast<std::int64_t>(std::floor((x[k] + hi[k] - lv.o[k]) / lv.s[k]));
-      if constexpr (B == Boundary::walls) {
-        first[k] = std::max<std::int64_t>(first[k], 0);
-        last = std::min<std::int64_t>(last, lv.n[k] - 1);
-      } else if (last - first[k] + 1 >= lv.n[k]) {
-        first[k] = 0;
-        last = lv.n[k] - 1;
-      }
-      cnt[k] = last - first[k] + 1;
-      if (cnt[k] <= 0) return;
-    }
-    std::array<std::int64_t, D> off{};
-    while (true) {
-      std::size_t c = 0;
-      for (int k = D - 1; k >= 0; --k) {
-        std::int64_t i = first[k] + off[k];
-        if constexpr (B == Boundary::periodic) {
-          if (i < 0) i += lv.n[k];
-          else if (i >= lv.n[k]) i -= lv.n[k];
-        }
-        c = c * static_cast<std::size_t>(lv.n[k]) + static_cast<std::size_t>(i);
-      }
+    if (!box_cells(lv, x, lo, hi, first, cnt)) return;
+    for_cells(lv, first, cnt, [&](std::size_t c) {
       for (std::uint32_t q = lv.head[c]; q != kEmpty;) {
         const Node& nd = nodes_[q];
-        if (!f(q, nd.x, nd.r)) return;
+        if (!f(q, nd.x, nd.r)) return false;
         q = nd.next;
       }
-      int k = 0;
-      while (k < D && ++off[k] == cnt[k]) off[k++] = 0;
-      if (k == D) break;
-    }
+      return true;
+    });
   }
+
+  /// visit_box for a visitor that takes every sphere (f returns nothing):
+  /// the cells' heads are read a batch at a time and their first nodes
+  /// fetched before the lists are walked, so the walks' first loads (most
+  /// lists hold one or two spheres) overlap instead of waiting in turn.
+  template <class F>
+  void visit_box_all(int l, const std::array<double, D>& x, const std::array<double, D>& lo,
+                     const std::array<double, D>& hi, F&& f) const {
+    const Level& lv = levels_[l];
+    std::array<std::int64_t, D> first, cnt;
+    if (!box_cells(lv, x, lo, hi, first, cnt)) return;
+    constexpr int kBatch = 32;
+    std::array<std::uint32_t, kBatch> heads;
+    int held = 0;
+    const auto walk = [&] {
+      for (int h = 0; h < held; ++h)
+        for (std::uint32_t q = heads[static_cast<std::size_t>(h)]; q != kEmpty;) {
+          const Node& nd = nodes_[q];
+          f(q, nd.x, nd.r);
+          q = nd.next;
+        }
+      held = 0;
+    };
+    for_cells(lv, first, cnt, [&](std::size_t c) {
+      const std::uint32_t q = lv.head[c];
+      if (q != kEmpty) {
+        __builtin_prefetch(&nodes_[q]);
+        heads[static_cast<std::size_t>(held++)] = q;
+        if (held == kBatch) walk();
+      }
+      return true;
+    });
+    walk();
+  }
+  /// The smallest radius the grid was made for.
+  double rmin() const { return r0_; }
   /// The largest radius stored at level l (0 if none).
   double level_rmax(int l) const { return levels_[l].rmax; }
 
@@ -204,6 +215,10 @@ class InsertGrid {
     nodes_[id].x = x;
     link(id);
   }
+
+  /// Gives stored sphere id the radius r, of its own level (level_of(r) ==
+  /// level(id)): its cell does not change.
+  void set_radius(std::uint32_t id, double r) { nodes_[id].r = r; }
 
   /// Removes sphere id (it must be stored): an O(cell occupancy) unlink.
   void erase(std::uint32_t id) {
@@ -229,6 +244,52 @@ class InsertGrid {
     std::size_t count = 0;  // spheres of the level
     std::vector<std::uint32_t> head;
   };
+
+  /// The cells of a level that meet the box [x + lo, x + hi]: the first and
+  /// the count per axis (periodic: a box as wide as the side or wider takes
+  /// the whole axis once); false if none.
+  [[gnu::always_inline]] static bool box_cells(const Level& lv, const std::array<double, D>& x, const std::array<double, D>& lo,
+                        const std::array<double, D>& hi, std::array<std::int64_t, D>& first,
+                        std::array<std::int64_t, D>& cnt) {
+    if (lv.rmax == 0) return false;
+    for (int k = 0; k < D; ++k) {
+      first[k] = static_cast<std::int64_t>(std::floor((x[k] + lo[k] - lv.o[k]) / lv.s[k]));
+      std::int64_t last = static_cast<std::int64_t>(std::floor((x[k] + hi[k] - lv.o[k]) / lv.s[k]));
+      if constexpr (B == Boundary::walls) {
+        first[k] = std::max<std::int64_t>(first[k], 0);
+        last = std::min<std::int64_t>(last, lv.n[k] - 1);
+      } else if (last - first[k] + 1 >= lv.n[k]) {
+        first[k] = 0;
+        last = lv.n[k] - 1;
+      }
+      cnt[k] = last - first[k] + 1;
+      if (cnt[k] <= 0) return false;
+    }
+    return true;
+  }
+
+  /// Calls g(cell index) for the cells box_cells found, axis 0 fastest
+  /// (periodic: wrapped); g returns false to stop.
+  template <class G>
+  [[gnu::always_inline]] static void for_cells(const Level& lv, const std::array<std::int64_t, D>& first,
+                        const std::array<std::int64_t, D>& cnt, G&& g) {
+    std::array<std::int64_t, D> off{};
+    while (true) {
+      std::size_t c = 0;
+      for (int k = D - 1; k >= 0; --k) {
+        std::int64_t i = first[k] + off[k];
+        if constexpr (B == Boundary::periodic) {
+          if (i < 0) i += lv.n[k];
+          else if (i >= lv.n[k]) i -= lv.n[k];
+        }
+        c = c * static_cast<std::size_t>(lv.n[k]) + static_cast<std::size_t>(i);
+      }
+      if (!g(c)) return;
+      int k = 0;
+      while (k < D && ++off[k] == cnt[k]) off[k++] = 0;
+      if (k == D) return;
+    }
+  }
 
   /// Cell index along axis k of coordinate x (x in the box): periodic, x - o
   /// is at least minus one domain (those cells are the last ones, wrapped);
