@@ -35,7 +35,8 @@ using namespace detail;
 /// other attributes are never iterated, so a corrupt attribute table cannot
 /// reach the reader.
 const char* const kStringAttrs[] = {"cache_key", "dist", "placement", "seed_str", "method", "git_hash", "compiler", "build_flags",
-                                    "version", "equilibration_chain", "equilibration_rng_state"};
+                                    "version", "equilibration_chain", "equilibration_rng_state",
+                                    "stationarity_series", "stationarity_rule", "stationarity_observable"};
 const char* const kNumberAttrs[] = {"seed", "n", "nu", "alpha", "omega", "sigma", "equilibrate", "generator_version",
                                     "rcp_estimate", "nu_achieved", "max_rel_overlap", "mean_rel_overlap",
                                     "mean_contacts", "slab_max_dev", "ks_distance", "ks_pvalue", "fire_steps",
@@ -43,7 +44,9 @@ const char* const kNumberAttrs[] = {"seed", "n", "nu", "alpha", "omega", "sigma"
                                     "equilibration_acceptance", "equilibration_swap_acceptance",
                                     "equilibration_sweeps", "equilibration_moves_accepted",
                                     "equilibration_moves_proposed", "equilibration_swaps_accepted",
-                                    "equilibration_swaps_proposed"};
+                                    "equilibration_swaps_proposed", "stationarity_sample_sweeps", "stationarity_rel_tol",
+                                    "stationarity_K", "stationarity_mean", "stationarity_drift_per_doubling",
+                                    "stationarity_drift_se", "stationarity_samples", "stationarity_reached"};
 
 /// Declared values of a dataset, checked against what the file stores and
 /// against the memory available, before anything is allocated.
