@@ -96,11 +96,24 @@ class Checkerboard {
       else origin[k] = u - width_[k];
     }
     const std::uint64_t seed = rng.bits();
-    grid_.reset(origin);
+    origin_ = origin;
     const std::size_t n = radii_.size();
+    // On one thread the trials are tested on the move lists (which name
+    // nodes): the nodes are numbered afresh with the lists and kept in
+    // between (the spheres move little between two numberings), and so are
+    // the grid's cells (the domains are found at this sweep's origin all the
+    // same). On several the grid alone tests the trials, its cells nested in
+    // this sweep's domains, so that a domain's lists are written by its own
+    // thread alone (and the move lists would name spheres of other domains
+    // of the running colour).
+    const bool had_lists = lists_on_;
+    lists_on_ = use_lists_ && threads <= 1 && !lists_lose_;
+    const bool renumber = !lists_on_ || !had_lists || lists_.unlisted() > n / kRelistUnlistedShare ||
+                          lists_.relisted() > kRelistPerSphere * n;
+    if (renumber) grid_.reset(origin);
     std::fill(start_.begin(), start_.end(), 0);
     for (std::size_t i = 0; i < n; ++i) {
-      dom_[i] = grid_.domain_at(at(i), level_[i]);
+      dom_[i] = grid_.domain_at(at(i), level_[i], origin_);
       ++start_[dom_[i] + 1];
     }
     for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
@@ -118,24 +131,15 @@ class Checkerboard {
     // the cells it is filed under (a counting sort), so the spheres a scan
     // meets lie near each other in memory. Nodes only place the spheres in
     // memory: which spheres a test meets, and so every outcome, is the same.
-    // On one thread the trials are tested on the move lists (which name
-    // nodes): the nodes are numbered afresh with the lists and kept in
-    // between (the spheres move little between two numberings). On several
-    // the grid alone tests them (the lists would name spheres of other
-    // domains of the running colour).
-    const bool had_lists = lists_on_;
-    lists_on_ = use_lists_ && threads <= 1 && !lists_lose_;
-    const bool renumber = !lists_on_ || !had_lists || lists_.unlisted() > n / kRelistUnlistedShare ||
-                          lists_.relisted() > kRelistPerSphere * n;
     if (renumber) {
       grid_.rank_by_cell(n, [&](std::size_t i) { return at(i); }, level_, node_of_);
       for (std::size_t i = 0; i < n; ++i) particle_at_[node_of_[i]] = static_cast<std::uint32_t>(i);
+      for (std::size_t nd = 0; nd < n; ++nd) {
+        const std::uint32_t i = particle_at_[nd];
+        grid_.insert(static_cast<std::uint32_t>(nd), at(i), radii_[i], level_[i]);
+      }
     }
     for (std::size_t slot = 0; slot < n; ++slot) node_[slot] = node_of_[members_[slot]];
-    for (std::size_t nd = 0; nd < n; ++nd) {
-      const std::uint32_t i = particle_at_[nd];
-      grid_.insert(static_cast<std::uint32_t>(nd), at(i), radii_[i], level_[i]);
-    }
     if (lists_on_ && renumber) lists_.build(grid_, n, threads);
     const std::size_t relisted_before = lists_.relisted();
     update_suspects(threads);
@@ -237,7 +241,7 @@ class Checkerboard {
     const std::array<double, D> xi = grid_.position(i), xj = grid_.position(j);
     const double ri = grid_.radius(i), rj = grid_.radius(j);
     if (!inside<D, B>(xj, ri, box_) || !inside<D, B>(xi, rj, box_)) return false;
-    if (grid_.domain_at(xj, grid_.level(i)) != c || grid_.domain_at(xi, grid_.level(j)) != c) return false;
+    if (grid_.domain_at(xj, grid_.level(i), origin_) != c || grid_.domain_at(xi, grid_.level(j), origin_) != c) return false;
     const bool i_fits = ri <= rj && !suspect_[members_[sj]];
     const bool j_fits = rj <= ri && !suspect_[members_[si]];
     bool ok;
@@ -320,7 +324,7 @@ class Checkerboard {
         if constexpr (B == Boundary::periodic) x[k] = wrap(x[k], box_[k]);
       }
       ++t.proposed;
-      if (!inside<D, B>(x, r, box_) || grid_.domain_at(x, grid_.level(i)) != c || move_overlaps(i, x, r))
+      if (!inside<D, B>(x, r, box_) || grid_.domain_at(x, grid_.level(i), origin_) != c || move_overlaps(i, x, r))
         continue;
       grid_.move(i, x);
       ++t.accepted;
@@ -350,6 +354,7 @@ class Checkerboard {
   // The move lists (gen_move_lists.hpp): asked for; on (one thread).
   bool use_lists_;
   bool lists_on_ = false, lists_lose_ = false;
+  Extent<D> origin_{};  // this sweep's domains start here
   MoveLists<D, B> lists_;
 };
 

@@ -100,11 +100,15 @@ class InsertGrid {
 
   /// The domain (per-axis index, linearised) of a sphere of level l
   /// (level_of of its radius) at x: the domain of its cell at its level.
-  std::size_t domain_at(const std::array<double, D>& x, int l) const {
+  std::size_t domain_at(const std::array<double, D>& x, int l) const { return domain_at(x, l, levels_[l].o); }
+  /// The same for the domains of cells that start at `origin` (as reset()
+  /// would place them), whatever origin the grid's cells have now.
+  std::size_t domain_at(const std::array<double, D>& x, int l, const Extent<D>& origin) const {
     const Level& lv = levels_[l];
     std::size_t c = 0;
     for (int k = D - 1; k >= 0; --k)
-      c = c * static_cast<std::size_t>(lv.n[k] / lv.m[k]) + static_cast<std::size_t>(coord(lv, x[k], k) / lv.m[k]);
+      c = c * static_cast<std::size_t>(lv.n[k] / lv.m[k]) +
+          static_cast<std::size_t>(coord(lv, x[k], k, origin[k]) / lv.m[k]);
     return c;
   }
 
@@ -294,8 +298,9 @@ class InsertGrid {
   /// Cell index along axis k of coordinate x (x in the box): periodic, x - o
   /// is at least minus one domain (those cells are the last ones, wrapped);
   /// rounding can put it one past the last cell.
-  static std::int64_t coord(const Level& lv, double x, int k) {
-    std::int64_t i = static_cast<std::int64_t>(std::floor((x - lv.o[k]) / lv.s[k]));
+  static std::int64_t coord(const Level& lv, double x, int k) { return coord(lv, x, k, lv.o[k]); }
+  static std::int64_t coord(const Level& lv, double x, int k, double o) {
+    std::int64_t i = static_cast<std::int64_t>(std::floor((x - o) / lv.s[k]));
     if constexpr (B == Boundary::periodic)
       if (i < 0) i += lv.n[k];
     return std::clamp<std::int64_t>(i, 0, lv.n[k] - 1);
