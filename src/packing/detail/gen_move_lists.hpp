@@ -26,9 +26,9 @@
 // "unlisted": its own trials are tested on the grid. One thread: the
 // checkerboard's domains run in turn (on several threads the grid alone
 // tests the trials, and a list could name a sphere of another domain that
-// moves meanwhile). The margins
-// (kListMargin) keep the argument true in floating point: budgets are
-// tested against h (1 - kListMargin), lists reach (1 + kListMargin) further.
+// moves meanwhile). The margins (kListMargin) keep the argument true in
+// floating point: budgets are tested against h (1 - kListMargin), lists
+// reach (1 + kListMargin) further.
 #pragma once
 #include <algorithm>
 #include <array>
