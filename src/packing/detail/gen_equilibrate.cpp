@@ -244,6 +244,10 @@ class Checkerboard {
     if (grid_.domain_at(xj, grid_.level(i), origin_) != c || grid_.domain_at(xi, grid_.level(j), origin_) != c) return false;
     const bool i_fits = ri <= rj && !suspect_[members_[sj]];
     const bool j_fits = rj <= ri && !suspect_[members_[si]];
+    // With the move lists on, two spheres of one level keep their nodes and
+    // places and exchange radii (and particles), so that both lists stay
+    // valid within their budgets; otherwise the nodes exchange places.
+    const bool keep_nodes = lists_on_ && grid_.level(i) == grid_.level(j);
     bool ok;
     // Sphere i in j's place is tested on j's move list (skipping i), where
     // that is exact, and so is j in i's place; else both on the grid.
@@ -255,17 +259,21 @@ class Checkerboard {
       const int above = lists_.levels();
       ok = (i_fits || !(lists_.overlaps(grid_, j, xj, ri, i) || grid_.overlaps(xj, ri, above, i))) &&
            (j_fits || !(lists_.overlaps(grid_, i, xi, rj, j) || grid_.overlaps(xi, rj, above, j)));
+      if (ok && !keep_nodes) {
+        grid_.erase(i);
+        grid_.erase(j);
+      }
     } else {
       grid_.erase(i);
       grid_.erase(j);
       ok = (i_fits || !grid_.overlaps(xj, ri, 0)) && (j_fits || !grid_.overlaps(xi, rj, 0));
-      grid_.insert(i, xi, ri);
-      grid_.insert(j, xj, rj);
+      if (!ok || keep_nodes) {
+        grid_.insert(i, xi, ri);
+        grid_.insert(j, xj, rj);
+      }
     }
     if (!ok) return false;
-    if (lists_on_ && grid_.level(i) == grid_.level(j)) {
-      // The nodes keep their places and exchange radii (and particles), so
-      // that their move lists stay valid within their budgets.
+    if (keep_nodes) {
       grid_.set_radius(i, rj);
       grid_.set_radius(j, ri);
       std::swap(node_[si], node_[sj]);
@@ -273,8 +281,6 @@ class Checkerboard {
       particle_at_[i] = members_[sj];
       particle_at_[j] = members_[si];
     } else {
-      grid_.erase(i);
-      grid_.erase(j);
       grid_.insert(i, xj, ri);
       grid_.insert(j, xi, rj);
     }

@@ -99,10 +99,9 @@ class InsertGrid {
   }
 
   /// The domain (per-axis index, linearised) of a sphere of level l
-  /// (level_of of its radius) at x: the domain of its cell at its level.
-  std::size_t domain_at(const std::array<double, D>& x, int l) const { return domain_at(x, l, levels_[l].o); }
-  /// The same for the domains of cells that start at `origin` (as reset()
-  /// would place them), whatever origin the grid's cells have now.
+  /// (level_of of its radius) at x: the domain of its cell at its level,
+  /// for cells that start at `origin` (as reset() would place them),
+  /// whatever origin the grid's cells have now.
   std::size_t domain_at(const std::array<double, D>& x, int l, const Extent<D>& origin) const {
     const Level& lv = levels_[l];
     std::size_t c = 0;

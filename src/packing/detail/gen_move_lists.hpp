@@ -114,7 +114,6 @@ class MoveLists {
     relisted_ = 0;
   }
 
-  bool built() const { return !x0_.empty(); }
   /// The listed levels: 0 .. levels() - 1; a test on a list scans the grid
   /// from level levels() up.
   int levels() const { return levels_; }
