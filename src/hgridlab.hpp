@@ -3,6 +3,7 @@
 // The header-only grid alone: <hgridlab/grid/hgrid.hpp> (target hgridlab::core).
 #pragma once
 #include "hgridlab/grid/version.hpp"
+#include "hgridlab/base/clock.hpp"
 #include "hgridlab/base/error.hpp"
 #include "hgridlab/base/heap.hpp"
 #include "hgridlab/base/parallel.hpp"

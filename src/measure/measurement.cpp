@@ -1,13 +1,13 @@
 #include "hgridlab/measure/measurement.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
 
 #include "hgridlab/grid/dispatch.hpp"
 #include "hgridlab/base/error.hpp"
+#include "hgridlab/base/clock.hpp"
 #include "hgridlab/grid/hgrid.hpp"
 #include "hgridlab/grid/tilted.hpp"
 #include "hgridlab/io/particle_file.hpp"
@@ -19,14 +19,11 @@
 namespace hgrid {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 /// The orthogonal grid that holds the cells (a tilted box's is its mapped one).
 template <int D, Boundary B>
 const HGrid<D, B>& mapped_grid(const HGrid<D, B>& g) { return g; }
 template <int D>
 const HGrid<D, Boundary::periodic>& mapped_grid(const TiltedHGrid<D>& g) { return g.mapped_grid(); }
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 /// Repeats build (make()) + uncounted query (each timed on its own) and
 /// keeps the fastest; every run must find the counted search's pairs.
@@ -44,11 +41,11 @@ void time_uncounted(MakeGrid make, const GridParams& g, const TimingOptions& opt
          (static_cast<int>(queries.size()) < opt.min_repeats || total < opt.min_seconds)) {
     auto t0 = Clock::now();
     const auto grid = make();
-    best_build = std::min(best_build, since(t0));
+    best_build = std::min(best_build, seconds_since(t0));
     for (auto& f : found) f.n = 0;
     t0 = Clock::now();
     grid.for_each_pair([&found](int t, std::uint32_t, std::uint32_t) { ++found[static_cast<std::size_t>(t)].n; });
-    const double t = since(t0);
+    const double t = seconds_since(t0);
     std::uint64_t pairs = 0;
     for (const auto& f : found) pairs += f.n;
     if (pairs != m.counts.contacts) throw std::logic_error("measure: uncounted and counted searches found different pairs");
@@ -169,10 +166,10 @@ Measurement measure(const Packing& p, const GridParams& g, const MeasureOptions&
   const auto on_grid = [&](auto make) {
     auto t0 = Clock::now();
     const auto grid = make();
-    m.seconds_build = since(t0);
+    m.seconds_build = seconds_since(t0);
     t0 = Clock::now();
     record_counts(m, grid.template for_each_pair<Counted>([](std::uint32_t, std::uint32_t) {}), o.K);
-    m.seconds_query = since(t0);
+    m.seconds_query = seconds_since(t0);
     m.sizes = grid.sizes();
     const auto& orthogonal = mapped_grid(grid);
     m.build_work = build_work(orthogonal);

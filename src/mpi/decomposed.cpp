@@ -2,13 +2,13 @@
 
 #include <sys/resource.h>
 
-#include <chrono>
 #include <cstring>
 #include <optional>
 #include <span>
 #include <type_traits>
 #include <vector>
 
+#include "hgridlab/base/clock.hpp"
 #include "hgridlab/domain/decomposed_query.hpp"
 #include "hgridlab/grid/dispatch.hpp"
 #include "hgridlab/io/packing_file.hpp"
@@ -16,10 +16,6 @@
 
 namespace hgrid::mpi {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
 
 /// Where the particles read here go, in one all-to-all: particle k to its
 /// owner owner[k] as an own particle, and particle ghost_k[g] to rank
@@ -192,7 +188,7 @@ DecomposedRun run(Packing part, std::uint64_t first, std::uint64_t total, double
     rep.ghosts = delivery.ghosts();
     part = Packing{};
   }
-  rep.seconds_exchange = since(t0);
+  rep.seconds_exchange = seconds_since(t0);
   rep.owned = n_owned;
   // What one 2 r_max shell would have sent (hgrid count; not timed).
   if (counted)
@@ -205,7 +201,7 @@ DecomposedRun run(Packing part, std::uint64_t first, std::uint64_t total, double
   // (The grid holds the own particles; the ghosts search it afterwards.)
   collective([&] { built.emplace(std::span<const Sphere<D>>(spheres.data(), n_owned), box, g); });
   const HGrid<D, B>& grid = *built;
-  rep.seconds_build = since(t0);
+  rep.seconds_build = seconds_since(t0);
   rep.grid_bytes = grid.memory_bytes();
   std::vector<std::vector<std::pair<std::uint64_t, std::uint64_t>>> found(
       pairs_out ? static_cast<std::size_t>(resolve_threads(g.threads)) : 0);
@@ -224,7 +220,7 @@ DecomposedRun run(Packing part, std::uint64_t first, std::uint64_t total, double
                : query_reported_pairs<Search::bottom_up, Uncounted>(grid, sp, n_owned, bricks, me, id, f, g.threads);
   };
   RankCounts c = pairs_out ? query(collect) : query(CountOnly{});
-  rep.seconds_query = since(t0);
+  rep.seconds_query = seconds_since(t0);
   out.sizes = grid.sizes();
 
   // Sums over the ranks; the pairs and the reports to rank 0.
@@ -284,7 +280,7 @@ DecomposedRun decomposed_search(const std::string& file, const GridParams& g, bo
       throw InputError("box", "the decomposed search cuts orthogonal boxes; " + file +
                                   " has a tilted box (count it without --decompose)");
   });
-  const double seconds_read = since(t0);
+  const double seconds_read = seconds_since(t0);
   DecomposedRun out;
   dispatch(part.d, part.boundary, [&](auto dim, auto bnd) {
     constexpr int D = decltype(dim)::value;

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -20,17 +19,12 @@
 #include "hgridlab/scenes/result_files.hpp"
 #include "hgridlab/io/atomic_file.hpp"
 #include "hgridlab/base/threads.hpp"
+#include "hgridlab/base/clock.hpp"
 #include "hgridlab/packing/packing_sizes.hpp"
 #include "hgridlab/base/progress.hpp"
 #include "hgridlab/io/packing_cache.hpp"
 
 namespace hgrid {
-namespace {
-
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-}  // namespace
 
 double estimated_work(const PackingSpec& s) {
   const double n = static_cast<double>(s.n);
@@ -47,7 +41,7 @@ PointResult run_point(const Scene& scene, const ScenePoint& point, const RunOpti
   PackingSpec spec = point.packing;
   spec.threads = threads > 0 ? threads : std::max(1, resolve_threads(0) / std::max(1, opt.jobs));
   const Packing p = cached_packing(spec, opt.packing_dir);
-  r.seconds_packing = since(t0);
+  r.seconds_packing = seconds_since(t0);
   r.equilibration_sweeps = equilibration_sweeps_done(p);
 
   t0 = Clock::now();
@@ -56,7 +50,7 @@ PointResult run_point(const Scene& scene, const ScenePoint& point, const RunOpti
   req.levels = scene.grid.levels;
   req.q = scene.grid.q;
   const std::vector<double> sizes = model_sizes(p, req, point.search, scene.grid.K);
-  r.seconds_sizes = since(t0);
+  r.seconds_sizes = seconds_since(t0);
 
   MeasureOptions mo;
   mo.K = scene.grid.K;
