@@ -16,16 +16,9 @@ namespace hgrid::mpi {
 /// (mpi::collective). Returns the results on rank 0 (nothing elsewhere).
 std::vector<PointResult> run_scene_on_ranks(const Scene& scene, const RunOptions& opt);
 
-/// What `hgrid run` does with scene files, at a scale: a DPM scene
-/// (kind = "dpm") alone and on one process (scenes/dpm_scene.hpp); else
-/// every scene's points, under MPI over the ranks one scene after the other,
-/// otherwise one scene alone or several in one pool of opt.jobs workers
-/// (scenes/runner.hpp). Each scene and each pair of files written is named
-/// on stderr (by rank 0). Returns what goes to stdout: with `json` the
-/// summary of every point (one scene's object, or an array of them), the DPM
-/// scene's summary line without; "" on other ranks. Throws InputError for a
-/// bad option (jobs < 1) or scene file, and for a DPM scene among others or
-/// under mpirun.
+/// What `hgrid run` does with scene files (scenes/run_scene.hpp's
+/// run_scene_files) with the ranks of the MPI run as its executor; without
+/// MPI, or under mpirun with one rank, that is this process alone.
 std::string run_scene_files(const std::vector<std::string>& files, const std::string& scale, const RunOptions& opt,
                             bool json);
 

@@ -1,6 +1,7 @@
 // The one scene runner: what is left of a scene (its journals), its packings
 // spread over the processes an executor names, each point measured and
-// journalled, the result files written by the lead. The executor is a
+// journalled, the result files written by the lead; and what `hgrid run`
+// does with scene files, on the same executor. The executor is a
 // compile-time policy: LocalRun (this process; run_scene(scene, opt)) or
 // mpi::RankRun (the ranks of an MPI run, mpi/sweep.hpp). An executor has
 //   int rank() const, int size() const        (0 and 1 here)
@@ -9,6 +10,7 @@
 //   std::vector<std::string> gather(const std::string&)  every rank's text on rank 0
 #pragma once
 #include <filesystem>
+#include <iostream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -16,6 +18,7 @@
 
 #include "hgridlab/base/error.hpp"
 #include "hgridlab/io/atomic_file.hpp"
+#include "hgridlab/scenes/dpm_scene.hpp"
 #include "hgridlab/scenes/journal.hpp"
 #include "hgridlab/scenes/result_files.hpp"
 #include "hgridlab/scenes/runner.hpp"
@@ -116,6 +119,53 @@ std::vector<PointResult> run_scene(const Scene& scene, const RunOptions& opt, Ex
     remove_journals(stem);
   });
   return lead ? resumed.results : std::vector<PointResult>{};
+}
+
+/// What `hgrid run` does with scene files, at a scale: a DPM scene
+/// (kind = "dpm") alone and on one process (scenes/dpm_scene.hpp); else
+/// every scene's points, over the executor's processes one scene after the
+/// other when it has several, otherwise one scene alone or several in one
+/// pool of opt.jobs workers (run_scenes). Each scene and each pair of files
+/// written is named on stderr (by the lead). Returns what goes to stdout:
+/// with `json` the summary of every point (one scene's object, or an array
+/// of them), the DPM scene's summary line without; "" on other processes.
+/// Throws InputError for a bad option (jobs < 1) or scene file, and for a
+/// DPM scene among others or on several processes.
+template <class Exec>
+std::string run_scene_files(const std::vector<std::string>& files, const std::string& scale, const RunOptions& opt,
+                            bool json, Exec& exec) {
+  if (opt.jobs < 1) throw InputError("jobs", "must be >= 1");
+  const int processes = exec.size();
+  const bool lead = exec.rank() == 0;
+  if (files.size() == 1 && scene_kind(files[0]) == "dpm") {
+    // One simulation, not a sweep of points: nothing to spread.
+    if (processes > 1)
+      throw InputError("kind", "a DPM scene (kind = \"dpm\") runs on one process: run it without mpirun");
+    return dpm::run_dpm_scene(files[0], scale, opt, json);
+  }
+  std::vector<Scene> scenes;
+  for (const auto& file : files) {
+    if (scene_kind(file) == "dpm") throw InputError("SCENE", "a DPM scene runs alone (" + file + ")");
+    scenes.push_back(load_scene(file, scale));
+    if (lead)
+      std::cerr << "hgrid run: scene " << scenes.back().name << " (" << scale << " scale): "
+                << scenes.back().points.size() << " points, " << opt.jobs << " job(s)"
+                << (processes > 1 ? " on each of " + std::to_string(processes) + " ranks" : "") << "\n";
+  }
+  // On several processes one scene after the other, each over them all; else one pool.
+  std::vector<std::vector<PointResult>> results;
+  if (processes > 1 || scenes.size() == 1)
+    for (const Scene& s : scenes) results.push_back(run_scene(s, opt, exec));
+  else
+    results = run_scenes(scenes, opt);
+  if (!lead) return "";
+  for (const Scene& s : scenes) std::cerr << "hgrid run: wrote " << result_stem(s, opt) << ".h5 and .csv\n";
+  if (!json) return "";
+  if (scenes.size() == 1) return results_json(scenes[0], results[0], opt) + "\n";
+  std::string out = "[\n";
+  for (std::size_t k = 0; k < scenes.size(); ++k)
+    out += results_json(scenes[k], results[k], opt) + (k + 1 < scenes.size() ? ",\n" : "\n");
+  return out + "]\n";
 }
 
 }  // namespace hgrid
