@@ -13,8 +13,8 @@ build with -g -fno-inline (every call is a call, nothing inlined away).
   python3 bench/folder_walk.py cg.out . --stacks   # does any call stack cross a boundary twice?
 
 A row "A -> B  n entry functions" lists the distinct functions of folder B
-that code of folder A called, and how many calls it made; the walk
-crosses A -> B once when both are 1.
+that code of folder A called, and how many calls it made: how wide the
+boundary is (one door when n is 1).
 
 --stacks reads "a walk crosses each folder boundary at most once each way"
 per call stack: no chain of calls goes from folder A into folder B, comes

@@ -9,6 +9,8 @@
 #include <mutex>
 #include <string>
 
+#include "hgridlab/base/clock.hpp"
+
 namespace hgrid {
 
 class Progress {
@@ -35,11 +37,9 @@ class Progress {
     drawn_ = false;
   }
 
-  double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+  double elapsed() const { return seconds_since(start_); }
 
  private:
-  using Clock = std::chrono::steady_clock;
-
   void report(double fraction, double done, const std::string& extra) {
     if (!on_) return;
     std::lock_guard<std::mutex> lock(mu_);

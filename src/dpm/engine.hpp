@@ -36,6 +36,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "hgridlab/base/clock.hpp"
 #include "hgridlab/dpm/contact_law.hpp"
 #include "hgridlab/dpm/simulation.hpp"
 #include "hgridlab/grid/hgrid.hpp"
@@ -63,7 +64,6 @@ inline Vec<D> cross_wn(const Spin<D>& w, const Vec<D>& n) {  // w x n
 
 template <int D, Boundary B, bool Friction, bool Gravity>
 class Engine final : public Simulation {
-  using Clock = std::chrono::steady_clock;
 
  public:
   Engine(const DpmConfig& c, const Packing& p, const std::vector<double>& vel)
@@ -195,9 +195,6 @@ class Engine final : public Simulation {
   const StepStats& stats() const override { return stats_; }
 
  private:
-  static double seconds_since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-  }
 
   /// Predicted end-of-step velocity v_n + dt a_n (v_ holds v_{n+1/2} here).
   Vec<D> vpred(std::size_t i) const {

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -16,6 +15,7 @@
 #include <vector>
 
 #include "hgridlab/model/cell_sizes.hpp"
+#include "hgridlab/base/clock.hpp"
 #include "hgridlab/base/error.hpp"
 
 namespace hgrid {
@@ -164,12 +164,12 @@ void fig13(const FigureSink& dir, const std::optional<TimeCoefficients>& time) {
         const double T_opt = choose_cell_sizes(f, params(), CellMethod::optimal).model.T_over_N;
         SizeChoice ch;
         int reps = 0;
-        const auto t0 = std::chrono::steady_clock::now();
+        const auto t0 = Clock::now();
         double secs = 0.0;
         do {
           ch = choose_cell_sizes(f, params(), m);
           ++reps;
-          secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+          secs = seconds_since(t0);
         } while (secs < kTimingMinSeconds);
         c.body << mi << "," << al << "," << w << "," << secs / reps << "," << ch.model.T_over_N << ","
                << ch.model.T_over_N / T_opt - 1.0 << "," << ch.levels << "\n";
@@ -181,9 +181,9 @@ void fig13(const FigureSink& dir, const std::optional<TimeCoefficients>& time) {
       for (double w : {10.0, 100.0, 1000.0}) {
         const PowerLaw f(al, w);
         const double T_opt = choose_cell_sizes(f, params(), CellMethod::optimal).model.T_over_N;
-        const auto t0 = std::chrono::steady_clock::now();
+        const auto t0 = Clock::now();
         const TimeOptimalSizes t = time_optimal_sizes(f, params(), *time, kFig13Particles);
-        const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        const double secs = seconds_since(t0);
         const double T = evaluate_model(f, params(), t.sizes).T_over_N;
         c.body << mi << "," << al << "," << w << "," << secs << "," << T << "," << T / T_opt - 1.0 << ","
                << t.sizes.size() << "\n";
@@ -226,7 +226,7 @@ void write_model_figures(const FigureSink& dir, const std::string& only, std::os
   auto worker = [&] {
     for (std::size_t i; (i = next++) < jobs.size();) {
       if (!want.empty() && !want.count(jobs[i].first)) continue;
-      const auto t0 = std::chrono::steady_clock::now();
+      const auto t0 = Clock::now();
       try {
         jobs[i].second();
       } catch (...) {
@@ -236,7 +236,7 @@ void write_model_figures(const FigureSink& dir, const std::string& only, std::os
       }
       std::lock_guard<std::mutex> lk(mu);
       log << "modelfigs: fig " << jobs[i].first << " data in "
-          << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s\n";
+          << seconds_since(t0) << " s\n";
     }
   };
   std::thread other(worker);
@@ -244,10 +244,10 @@ void write_model_figures(const FigureSink& dir, const std::string& only, std::os
   other.join();
   if (err) std::rethrow_exception(err);
   if (want.empty() || want.count(13)) {  // timings alone, after the rest
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = Clock::now();
     fig13(dir, time);
     log << "modelfigs: fig 13 data in "
-        << std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() << " s\n";
+        << seconds_since(t0) << " s\n";
   }
 }
 

@@ -8,7 +8,6 @@
 #include "hgridlab/model/time_model.hpp"
 
 #include <array>
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -27,12 +26,11 @@
 #include "hgridlab/io/provenance.hpp"
 #include "hgridlab/io/packing_cache.hpp"
 #include "hgridlab/io/result_table.hpp"
+#include "hgridlab/base/clock.hpp"
 #include "hgridlab/base/progress.hpp"
 
 namespace hgrid::dpm {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 struct RunResult {
   std::vector<double> sizes;
@@ -94,7 +92,7 @@ std::array<RunResult, 2> simulate_both(const DpmScene& sc, const Packing& p, con
       sim[k]->run(steps);
       r[k].t.push_back(sim[k]->time());
       r[k].E.push_back(sim[k]->kinetic_energy());
-      r[k].seconds_total += std::chrono::duration<double>(Clock::now() - t0).count();
+      r[k].seconds_total += seconds_since(t0);
     }
     done += steps;
     bar.count(static_cast<double>(done), static_cast<double>(sc.steps));
