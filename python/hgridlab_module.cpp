@@ -9,6 +9,7 @@
 
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "hgridlab/calibration/k_choice.hpp"
@@ -18,6 +19,7 @@
 #include "hgridlab/measure/measurement.hpp"
 #include "hgridlab/measure/pairs.hpp"
 #include "hgridlab/base/error.hpp"
+#include "hgridlab/contacts/contact_list.hpp"
 #include "hgridlab/grid/version.hpp"
 #include "hgridlab/io/particle_file.hpp"
 #include "hgridlab/packing/packing.hpp"
@@ -163,6 +165,149 @@ py::dict read_particle_file(const std::string& path, std::optional<std::int64_t>
   return out;
 }
 
+/// hgridlab.ContactList: a contact list kept between the steps of a
+/// simulation (contacts/contact_list.hpp). The dimension is the box's length.
+class PyContactList {
+ public:
+  PyContactList(const DoubleArray& box, const std::vector<bool>& periodic, const std::optional<DoubleArray>& origin,
+                double skin, double skin_rel, const std::optional<std::vector<double>>& sizes,
+                const std::string& search, int threads) {
+    const std::vector<double> b = to_vector(box, "box");
+    d_ = static_cast<int>(b.size());
+    if (d_ != 2 && d_ != 3) throw InputError("box", "must have 2 or 3 side lengths (the dimension)");
+    ContactListParams p;
+    if (sizes) p.sizes = *sizes;
+    p.search = parse_search(search);
+    p.threads = check_threads(threads);
+    p.skin = skin;
+    p.skin_rel = skin_rel;
+    if (d_ == 2) list_.emplace<ContactList<2>>(list_box<2>(b, periodic, origin), p);
+    else list_.emplace<ContactList<3>>(list_box<3>(b, periodic, origin), p);
+  }
+
+  /// New positions (N x d) and radii (N, or None: the last ones); returns
+  /// whether the list was rebuilt. C-contiguous float64 is read in place.
+  bool update(const DoubleArray& positions, const std::optional<DoubleArray>& radii) {
+    if (positions.ndim() != 2 || positions.shape(1) != d_)
+      throw InputError("positions", "must be an N x " + std::to_string(d_) + " array");
+    const auto n = static_cast<std::size_t>(positions.shape(0));
+    std::span<const double> r;
+    DoubleArray r_arr;
+    if (radii) {
+      r_arr = *radii;
+      if (r_arr.ndim() != 1 || static_cast<std::size_t>(r_arr.shape(0)) != n)
+        throw InputError("radii", "must be a 1-D array with one radius per row of positions");
+      r = {r_arr.data(), n};
+    } else {
+      if (!radii_ || static_cast<std::size_t>(radii_->shape(0)) != n)
+        throw InputError("radii", "needed at the first update and whenever the number of particles changes");
+      r = {radii_->data(), n};
+    }
+    const std::span<const double> x(positions.data(), n * static_cast<std::size_t>(d_));
+    bool rebuilt = false;
+    {
+      py::gil_scoped_release release;
+      std::visit([&](auto& l) { rebuilt = l.update(x, r); }, list_);
+    }
+    if (radii) radii_ = r_arr;  // kept (a reference, no copy) once the update has passed
+    return rebuilt;
+  }
+
+  void set_box(const DoubleArray& box, const std::optional<DoubleArray>& origin) {
+    const std::vector<double> b = to_vector(box, "box");
+    if (static_cast<int>(b.size()) != d_) throw InputError("box", "must have " + std::to_string(d_) + " side lengths");
+    std::visit(
+        [&](auto& l) {
+          constexpr int D = std::decay_t<decltype(l)>::dimension;
+          std::vector<bool> per(D);
+          for (int k = 0; k < D; ++k) per[k] = l.box().periodic[k];
+          l.set_box(list_box<D>(b, per, origin ? origin : std::optional<DoubleArray>(origin_of(l.box()))));
+        },
+        list_);
+  }
+
+  /// The contacts (i, j), i < j, ascending, as an (M, 2) uint32 array.
+  py::array_t<std::uint32_t> pairs() const {
+    return std::visit(
+        [&](const auto& l) {
+          py::array_t<std::uint32_t> out({static_cast<py::ssize_t>(l.contacts()), py::ssize_t{2}});
+          std::uint32_t* o = out.mutable_data();
+          {
+            py::gil_scoped_release release;
+            l.for_each_contact([&](std::uint32_t i, std::uint32_t j) {
+              *o++ = i;
+              *o++ = j;
+            });
+          }
+          return out;
+        },
+        list_);
+  }
+
+  /// The contacts as compressed rows: (start (N + 1), partners (M)).
+  py::tuple neighbours() const {
+    return std::visit(
+        [&](const auto& l) {
+          const auto st = l.start();
+          const auto pa = l.partners();
+          return py::make_tuple(py::array_t<std::uint32_t>(static_cast<py::ssize_t>(st.size()), st.data()),
+                                py::array_t<std::uint32_t>(static_cast<py::ssize_t>(pa.size()), pa.data()));
+        },
+        list_);
+  }
+
+  py::dict stats() const {
+    return std::visit(
+        [&](const auto& l) {
+          const ContactListStats& s = l.stats();
+          py::dict out;
+          out["steps"] = s.steps;
+          out["builds"] = s.builds;
+          out["candidates"] = s.candidates;
+          out["contacts"] = s.contacts;
+          out["seconds_check"] = s.seconds_check;
+          out["seconds_build"] = s.seconds_build;
+          out["seconds_test"] = s.seconds_test;
+          out["seconds_per_step"] = s.seconds_per_step();
+          out["grid_sizes"] = l.grid_sizes();
+          return out;
+        },
+        list_);
+  }
+
+  int d() const { return d_; }
+
+ private:
+  template <int D>
+  static ListBox<D> list_box(const std::vector<double>& b, const std::vector<bool>& periodic,
+                             const std::optional<DoubleArray>& origin) {
+    ListBox<D> lb;
+    if (periodic.size() != static_cast<std::size_t>(D))
+      throw InputError("periodic", "must have one flag per axis (" + std::to_string(D) + ")");
+    for (int k = 0; k < D; ++k) {
+      lb.side[k] = b[k];
+      lb.periodic[k] = periodic[k];
+    }
+    if (origin) {
+      const std::vector<double> o = to_vector(*origin, "origin");
+      if (o.size() != static_cast<std::size_t>(D)) throw InputError("origin", "must have one value per axis");
+      for (int k = 0; k < D; ++k) lb.origin[k] = o[k];
+    }
+    return lb;
+  }
+  template <int D>
+  static DoubleArray origin_of(const ListBox<D>& b) {
+    DoubleArray o(D);
+    for (int k = 0; k < D; ++k) o.mutable_data()[k] = b.origin[k];
+    return o;
+  }
+
+  int d_ = 3;
+  std::variant<ContactList<2>, ContactList<3>> list_{std::in_place_type<ContactList<3>>, ListBox<3>{{1, 1, 1}, {}, {}},
+                                                     ContactListParams{}};
+  std::optional<DoubleArray> radii_;
+};
+
 }  // namespace
 
 PYBIND11_MODULE(hgridlab, m) {
@@ -200,5 +345,32 @@ PYBIND11_MODULE(hgridlab, m) {
   m.def("read_packing", &read_particle_file, py::arg("path"), py::arg("frame") = py::none(),
         "A particle file of any supported format: radii, positions (or None), box (or None), tilt (or None), "
         "boundary (or None), d, format, nu (or None).");
+  py::class_<PyContactList>(m, "ContactList",
+                            "Contacts step after step: keeps the candidate pairs within r_i + r_j + skin (each radius "
+                            "also inflated by skin_rel r_i) and, at every update, hands over exactly the pairs with "
+                            "distance < r_i + r_j (minimum image on periodic axes), the same set as a fresh grid; "
+                            "rebuilt with the HGrid only when a particle may have moved or grown through its skin, "
+                            "or the box changed beyond it. box: the sides (its length is the dimension, 2 or 3); "
+                            "periodic: a flag per axis; origin: the lower corner (default 0); sizes: cell sizes for "
+                            "the radii (default: doubling from the smallest to the largest diameter); threads: 0 = "
+                            "all cores, the same pairs for any number.")
+      .def(py::init<const DoubleArray&, const std::vector<bool>&, const std::optional<DoubleArray>&, double, double,
+                    const std::optional<std::vector<double>>&, const std::string&, int>(),
+           py::arg("box"), py::arg("periodic") = std::vector<bool>{true, true, true}, py::arg("origin") = py::none(),
+           py::arg("skin") = 0.0, py::arg("skin_rel") = 0.0, py::arg("sizes") = py::none(),
+           py::arg("search") = "bottomup", py::arg("threads") = 1)
+      .def("update", &PyContactList::update, py::arg("positions"), py::arg("radii") = py::none(),
+           "New positions (N x d) and radii (N; None: the last ones). Returns whether the candidates were rebuilt. "
+           "Bad input raises ValueError naming the field (a particle outside a walled axis names the particle and "
+           "the axis) and leaves the list as it was.")
+      .def("pairs", &PyContactList::pairs, "The contacts (i, j), i < j, ascending, as an (M, 2) uint32 array.")
+      .def("neighbours", &PyContactList::neighbours,
+           "The contacts as compressed rows (start, partners): the partners j > i of particle i are "
+           "partners[start[i]:start[i + 1]], ascending.")
+      .def("set_box", &PyContactList::set_box, py::arg("box"), py::arg("origin") = py::none(),
+           "A new box (sides, and origin: None keeps it); the axes' boundaries stay.")
+      .def_property_readonly("stats", &PyContactList::stats,
+                             "steps, builds, candidates, contacts, seconds (check, build, test, per step), grid_sizes.")
+      .def_property_readonly("d", &PyContactList::d);
   m.attr("__version__") = HGRIDLAB_VERSION;
 }

@@ -131,4 +131,9 @@ Packing packing_from(const Scene<D>& s, Boundary b) {
   return p;
 }
 
+/// Calls of operator new since the test program started (test_hgrid_rebuild.cpp
+/// counts them), and whether they are counted (not under AddressSanitizer).
+std::size_t allocations();
+bool counts_allocations();
+
 }  // namespace hgrid::test

@@ -208,6 +208,21 @@ TEST(Dpm, TrajectoryDoesNotDependOnTheGrid) {
         x.insert(x.end(), v.begin(), v.end());
         runs.push_back(std::move(x));
       }
+      // A contact list with a skin: rebuilt far less often, the same trajectory.
+      for (const double skin : {0.3, 1.0}) {
+        c.sizes = {1.25, 2.5};
+        c.search = Search::bottom_up;
+        c.skin = skin;
+        auto sim = make_simulation(c, p, vel);
+        sim->run(2000);
+        EXPECT_LT(sim->stats().list_builds, 2000u / 4) << "skin " << skin;
+        EXPECT_EQ(sim->stats().pair_contacts, contacts) << "skin " << skin;
+        auto x = sim->positions();
+        const auto v = sim->velocities();
+        x.insert(x.end(), v.begin(), v.end());
+        runs.push_back(std::move(x));
+      }
+      c.skin = 0;
       EXPECT_GT(contacts, 2000u);
       for (std::size_t k = 1; k < runs.size(); ++k) EXPECT_TRUE(runs[k] == runs[0]) << "grid " << k;
     }
@@ -272,6 +287,7 @@ TEST(Dpm, DensePileWithFrictionDoesNotDependOnTheThreads) {
     std::vector<std::array<std::uint64_t, 3>> counts;
     for (int threads : {1, 2, 3, 8}) {
       c.threads = threads;
+      c.skin = threads % 2 == 0 ? 0.4 : 0.0;  // and the same with a contact list's skin
       auto sim = make_simulation(c, p, vel);
       sim->run(40);
       auto x = sim->positions();

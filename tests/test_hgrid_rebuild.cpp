@@ -33,6 +33,10 @@ constexpr bool kCountsAllocations = false;
 constexpr bool kCountsAllocations = true;
 #endif
 }  // namespace
+namespace hgrid::test {
+std::size_t allocations() { return g_allocations.load(); }
+bool counts_allocations() { return kCountsAllocations; }
+}  // namespace hgrid::test
 #if !defined(HGRID_TEST_ASAN)
 // GCC flags free() on a pointer from operator new once it inlines both;
 // here both sides are malloc/free, so the pair matches.
@@ -104,6 +108,45 @@ TEST(HGridRebuild, SameAsFreshGrid3DWalls) {
 }
 TEST(HGridRebuild, SameAsFreshGrid2DPeriodic) { check_sequence<2, Boundary::periodic>(5); }
 TEST(HGridRebuild, SameAsFreshGrid2DWalls) { check_sequence<2, Boundary::walls>(6); }
+
+// Rebuilt in a new box (compressed, then expanded past the start): the same
+// pairs and counts as a fresh grid in that box; a rejected box (a side of 0,
+// or cells too small for it) leaves the grid as it was, box included.
+template <int D, Boundary B>
+void check_new_boxes(std::uint64_t seed) {
+  const Scene<D> base = random_scene<D>(2000, 0.3, -3.0, 8.0, B, seed);
+  const std::vector<double> sizes = exponential_sizes(3, 1.0, 8.0);
+  HGrid<D, B> grid(std::span<const Sphere<D>>(base.spheres), base.box, GridParams{sizes, Search::top_down});
+  for (const double f : {0.97, 0.9, 1.05}) {
+    SCOPED_TRACE("seed " + std::to_string(seed) + ", box x " + std::to_string(f));
+    Scene<D> s = base;
+    for (int a = 0; a < D; ++a) s.box[a] *= f;
+    for (auto& p : s.spheres)
+      for (int a = 0; a < D; ++a) p.x[a] *= f;
+    grid.rebuild(std::span<const Sphere<D>>(s.spheres), s.box);
+    const HGrid<D, B> fresh(std::span<const Sphere<D>>(s.spheres), s.box, GridParams{sizes, Search::top_down});
+    const auto got = query_pairs<Search::top_down, Counted>(grid);
+    EXPECT_EQ(got.first, (brute_pairs<D, B>(s)));
+    expect_same_counters(got.second, query_pairs<Search::top_down, Counted>(fresh).second);
+    EXPECT_EQ(grid.box(), s.box);
+    EXPECT_EQ(grid.sizes(), fresh.sizes());
+    // Rejected boxes change nothing.
+    Extent<D> flat = s.box;
+    flat[0] = 0;
+    EXPECT_THROW(grid.rebuild(std::span<const Sphere<D>>(s.spheres), flat), InputError);
+    Extent<D> huge = s.box;
+    huge[D - 1] = 1e7;
+    EXPECT_THROW(grid.rebuild(std::span<const Sphere<D>>(s.spheres), huge), InputError);
+    EXPECT_EQ(grid.box(), s.box);
+    EXPECT_EQ((query_pairs<Search::top_down, Counted>(grid).first), got.first);
+  }
+}
+TEST(HGridRebuild, InANewBoxSameAsFreshGrid) {
+  check_new_boxes<3, Boundary::periodic>(21);
+  check_new_boxes<3, Boundary::walls>(22);
+  check_new_boxes<2, Boundary::periodic>(23);
+  check_new_boxes<2, Boundary::walls>(24);
+}
 
 // A level that is ranked in one build and hashed in the next (its particle
 // count changes the directory's layout: its ~134 000 cells of side 2 are

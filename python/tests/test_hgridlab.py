@@ -205,3 +205,62 @@ def test_pairs_in_a_tilted_box_equal_brute_force(d):
     assert c["contacts"] == len(want)
     assert c["tilt"] == pytest.approx(tilt)
     assert c["tilt_inflation"] > 1.0
+
+
+def brute_pairs_per_axis(positions, radii, box, periodic, origin):
+    """The pairs with distance < r_i + r_j, minimum image on the periodic axes."""
+    x = positions - origin
+    per = np.asarray(periodic)
+    x[:, per] = np.mod(x[:, per], box[per])
+    diff = x[None, :, :] - x[:, None, :]
+    diff[:, :, per] -= box[per] * np.round(diff[:, :, per] / box[per])
+    dist2 = np.sum(diff**2, axis=-1)
+    reach = (radii[:, None] + radii[None, :]) ** 2
+    i, j = np.nonzero(np.triu(dist2 < reach, k=1))
+    return set(zip(i.tolist(), j.tolist()))
+
+
+@pytest.mark.parametrize("d,periodic", [(3, (True, True, False)), (2, (False, True)), (3, (True, True, True))])
+def test_contact_list_follows_a_trajectory(d, periodic):
+    positions, radii, box = scene(n=400, nu=0.3, d=d, seed=SEED + d)
+    origin = np.linspace(-2.0, 5.0, d)
+    positions = positions + origin
+    rng = np.random.default_rng(SEED)
+    cl = hgridlab.ContactList(box, periodic=periodic, origin=origin, skin=0.5, threads=2)
+    assert cl.d == d
+    walled = ~np.asarray(periodic)
+    for step in range(30):
+        if step:
+            positions = positions + rng.uniform(-0.05, 0.05, positions.shape)
+            positions[:, walled] = np.clip(positions[:, walled], origin[walled], (origin + box)[walled])
+        cl.update(positions, radii if step == 0 else None)
+        got = cl.pairs()
+        assert got.dtype == np.uint32 and got.shape[1] == 2
+        assert set(map(tuple, got.tolist())) == brute_pairs_per_axis(positions, radii, box, periodic, origin)
+        assert [tuple(p) for p in got.tolist()] == sorted(map(tuple, got.tolist()))
+    start, partners = cl.neighbours()
+    assert start[-1] == len(partners) == len(got)
+    s = cl.stats
+    assert s["steps"] == 30 and 1 <= s["builds"] < 10 and s["contacts"] == len(got)
+
+
+def test_contact_list_rejects_bad_input_and_keeps_its_state():
+    positions, radii, box = scene(n=100, nu=0.3, d=3)
+    cl = hgridlab.ContactList(box, periodic=(True, True, False), skin=0.3)
+    cl.update(positions, radii)
+    before = cl.pairs()
+    bad = positions.copy()
+    bad[4, 2] = box[2] + 1.0
+    with pytest.raises(ValueError, match="particle 4 left the walled axis 3"):
+        cl.update(bad)
+    with pytest.raises(ValueError, match="positions"):
+        cl.update(positions[:, :2])
+    with pytest.raises(ValueError, match="radii"):
+        cl.update(positions[:50])
+    assert np.array_equal(cl.pairs(), before) and cl.stats["steps"] == 1
+    with pytest.raises(ValueError, match="skin"):
+        hgridlab.ContactList(box, skin=-1.0)
+    cl.set_box(box * 0.99)
+    cl.update(positions * 0.99)
+    assert set(map(tuple, cl.pairs().tolist())) == brute_pairs_per_axis(
+        positions * 0.99, radii, box * 0.99, (True, True, False), np.zeros(3))

@@ -18,6 +18,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <exception>
+#include <span>
 #include <vector>
 
 #include "hgridlab/base/parallel.hpp"
@@ -39,6 +40,26 @@ class PairSum {
   /// Takes the pairs found by lists.size() threads (one key list each, from
   /// key(); the lists are left as they are) and puts them in canonical order.
   void gather(const std::vector<std::vector<std::uint64_t>>& lists);
+
+  /// Takes pairs already in canonical order as compressed rows (the
+  /// partners j > i of particle i ascending, partners[start[i]] ..
+  /// partners[start[i + 1] - 1]; a ContactList's contacts), to be summed
+  /// on `threads` ranges of particles (0 = all) cut where the pairs before
+  /// the cut reach each range's share. No sort.
+  void assign_rows(std::span<const std::uint32_t> start, std::span<const std::uint32_t> partners, int threads);
+
+  /// The pairs gathered, as compressed rows: the partners j > i of
+  /// particle i are partners[start[i]] .. partners[start[i + 1] - 1],
+  /// ascending (the arrays' capacity is reused).
+  void rows(std::vector<std::uint32_t>& start, std::vector<std::uint32_t>& partners) const {
+    start.assign(n_ + 1, 0);
+    partners.resize(keys_.size());
+    for (std::size_t m = 0; m < keys_.size(); ++m) {
+      ++start[pk_.first(keys_[m]) + 1];
+      partners[m] = pk_.second(keys_[m]);
+    }
+    for (std::size_t i = 0; i < n_; ++i) start[i + 1] += start[i];
+  }
 
   /// The pairs in canonical order, after gather().
   const std::vector<std::uint64_t>& keys() const { return keys_; }
@@ -143,6 +164,26 @@ inline void PairSum::gather(const std::vector<std::vector<std::uint64_t>>& lists
       const std::size_t lo = range_k_[static_cast<std::size_t>(r)], hi = range_k_[static_cast<std::size_t>(r) + 1];
       detail::radix_sort_keys(keys_.data() + lo, tmp_.data() + lo, hi - lo, key_bits);
     }
+  }
+}
+
+inline void PairSum::assign_rows(std::span<const std::uint32_t> start, std::span<const std::uint32_t> partners,
+                                 int threads) {
+  const std::size_t K = partners.size();
+  keys_.resize(K);
+  for (std::size_t i = 0; i + 1 < start.size(); ++i)
+    for (std::uint32_t m = start[i]; m < start[i + 1]; ++m)
+      keys_[m] = pk_.key(static_cast<std::uint32_t>(i), partners[m]);
+  const int T = std::max(1, resolve_threads(threads));
+  range_p_.assign(static_cast<std::size_t>(T) + 1, static_cast<std::uint32_t>(n_));
+  range_k_.assign(static_cast<std::size_t>(T) + 1, K);
+  range_p_[0] = 0;
+  range_k_[0] = 0;
+  for (int r = 1; r < T; ++r) {  // the first particle whose pairs start at or after the share
+    const std::size_t share = K * static_cast<std::size_t>(r) / static_cast<std::size_t>(T);
+    const auto p = static_cast<std::size_t>(std::lower_bound(start.begin(), start.end() - 1, share) - start.begin());
+    range_p_[static_cast<std::size_t>(r)] = static_cast<std::uint32_t>(std::max<std::size_t>(p, range_p_[r - 1]));
+    range_k_[static_cast<std::size_t>(r)] = start[range_p_[static_cast<std::size_t>(r)]];
   }
 }
 

@@ -37,6 +37,11 @@ struct DpmConfig {
   /// pairs are put in canonical order before the forces are summed, so the
   /// trajectory is the same, bit for bit, for any number.
   int threads = 1;
+  /// The contact list's pair skin (contacts/contact_list.hpp), in the
+  /// radii's units: candidates within r_i + r_j + skin, rebuilt when a
+  /// particle may have moved through it. 0: rebuilt every step. The
+  /// trajectory is the same, bit for bit, for any skin.
+  double skin = 0;
 };
 
 /// Throws InputError naming the field (the scene key) and the allowed range.

@@ -1,14 +1,16 @@
 // The time loop of one composition of effects: velocity Verlet (half kick,
-// drift, forces, half kick), contacts from an HGrid rebuilt every step.
+// drift, forces, half kick), contacts from a contact list
+// (contacts/contact_list.hpp) over the HGrid.
 //
-// Why rebuilt: hgrid::HGrid is an immutable value type laid out by a counting
-// sort; a rebuild is O(N) with a small constant (about one query's cost for
-// the linked cell at this density), needs no skin or displacement bookkeeping,
-// and keeps the contact set exact at every step. One grid is kept and
-// rebuilt in place (HGrid::rebuild), and the force buffers are kept too, so
-// that a step allocates nothing: with fresh arrays every step, glibc's
-// malloc handed memory back to the kernel and took it again, and the page
-// faults cost more than the step's work on some machines.
+// The list keeps the candidate pairs within r_i + r_j + skin and hands over,
+// at every step, exactly the pairs that touch, tested with the grid's own
+// expression: the same set, bit for bit, as a grid rebuilt every step. It is
+// rebuilt (the grid rebuilt in place) only when a particle may have moved
+// through its skin; with skin 0 (the default) it is rebuilt every step.
+// The list, the grid and the force buffers are kept between steps, so that
+// a step allocates nothing: with fresh arrays every step, glibc's malloc
+// handed memory back to the kernel and took it again, and the page faults
+// cost more than the step's work on some machines.
 //
 // Velocity-dependent forces (dashpot, friction) use the predicted velocity
 // v_n + dt a_n (second order), so the restitution of a resolved contact
@@ -17,13 +19,13 @@
 // Contacts are handled in canonical order, (i, j) ascending, not in the
 // order the grid finds them: a particle's forces are summed in an order that
 // does not depend on the cell sizes, the number of levels, the search
-// direction or the grid's internals, so the trajectory is a property of the
-// scene alone (the optimal grid and the linked cell run the same simulation,
-// bit for bit). The sort is an LSD radix sort of the packed pair keys, timed
-// with the forces, not with the contact detection. On several threads the
-// sort, the forces and the sums run on all of them and still add every
-// particle's contributions in canonical order (contacts/pair_sum.hpp), so the
-// trajectory is also the same for any number of threads.
+// direction, the skin or the grid's internals, so the trajectory is a
+// property of the scene alone (the optimal grid and the linked cell, with
+// any skin, run the same simulation, bit for bit). The list's contacts come
+// in that order. On several threads the forces and the sums run on all of
+// them and still add every particle's contributions in canonical order
+// (contacts/pair_sum.hpp), so the trajectory is also the same for any
+// number of threads.
 #pragma once
 #include <algorithm>
 #include <atomic>
@@ -40,6 +42,7 @@
 #include "hgridlab/dpm/contact_law.hpp"
 #include "hgridlab/dpm/simulation.hpp"
 #include "hgridlab/grid/hgrid.hpp"
+#include "hgridlab/contacts/contact_list.hpp"
 #include "hgridlab/contacts/pair_sum.hpp"
 
 namespace hgrid::dpm {
@@ -90,7 +93,10 @@ class Engine final : public Simulation {
     grid_params_.search = c.search;
     grid_params_.threads = c.threads;
     threads_ = resolve_threads(c.threads);
-    thread_keys_.resize(static_cast<std::size_t>(threads_));
+    ListBox<D> lb;
+    lb.side = box_;
+    lb.periodic.fill(B == Boundary::periodic);
+    list_.emplace(lb, ContactListParams{c.sizes, c.search, c.threads, c.skin, 0.0});
     compute_forces();
   }
 
@@ -152,18 +158,10 @@ class Engine final : public Simulation {
 
   double elastic_energy() const override {
     double e = 0;
-    GridParams one = grid_params_;  // a diagnostic: one thread
-    one.threads = 1;
-    const HGrid<D, B> grid(s_, box_, one);
-    const detail::PairKeys pk(s_.size());
-    std::vector<std::uint64_t> keys, tmp;
-    grid.for_each_pair([&](std::uint32_t i, std::uint32_t j) { keys.push_back(pk.key(i, j)); });
-    pk.sort(keys, tmp);
-    for (const std::uint64_t key : keys) {
-      const std::uint32_t i = pk.first(key), j = pk.second(key);
+    list_->for_each_contact([&](std::uint32_t i, std::uint32_t j) {  // the contacts of the current positions
       const double dist = std::sqrt(detail::dist2<D, B>(s_[i].x, s_[j].x, box_));
       e += law_.energy(m_[i] * m_[j] / (m_[i] + m_[j]), s_[i].r + s_[j].r - dist);
-    }
+    });
     if constexpr (B == Boundary::walls)
       for (std::size_t i = 0; i < s_.size(); ++i)
         for (int k = 0; k < D; ++k) {
@@ -275,27 +273,23 @@ class Engine final : public Simulation {
   }
 
   void compute_forces() {
-    auto t0 = Clock::now();
-    if (grid_) grid_->rebuild(s_);
-    else grid_.emplace(s_, box_, grid_params_);
-    const auto t_built = Clock::now();
-    for (auto& k : thread_keys_) k.clear();
-    if (threads_ <= 1) {
-      auto& keys = thread_keys_[0];
-      grid_->for_each_pair([&](std::uint32_t i, std::uint32_t j) { keys.push_back(sum_.key(i, j)); });
-    } else {
-      grid_->for_each_pair(
-          [&](int t, std::uint32_t i, std::uint32_t j) { thread_keys_[static_cast<std::size_t>(t)].push_back(sum_.key(i, j)); });
+    try {
+      list_->update(s_);
+    } catch (const InputError& e) {  // a particle left the walled box
+      throw std::runtime_error("dpm: " + e.problem() + " at t = " + std::to_string(time_) +
+                               " (time step too large for the velocities?)");
     }
-    stats_.seconds_grid_build += std::chrono::duration<double>(t_built - t0).count();
-    stats_.seconds_query += seconds_since(t_built);
-    stats_.seconds_contact_detection += seconds_since(t0);
+    const ContactListStats& ls = list_->stats();
+    stats_.list_builds = ls.builds;
+    stats_.seconds_grid_build = ls.seconds_build;
+    stats_.seconds_query = ls.seconds_check + ls.seconds_test;
+    stats_.seconds_contact_detection = ls.seconds();
 
     // Canonical order, then every particle's forces: gravity, its pairs in
     // canonical order, the walls (the same additions in the same order on
     // any number of threads).
-    t0 = Clock::now();
-    sum_.gather(thread_keys_);
+    const auto t0 = Clock::now();
+    sum_.assign_rows(list_->start(), list_->partners(), threads_);
     const std::size_t n = s_.size();
     std::vector<Vec<D>>& fnew = fnew_;
     fnew.resize(n);  // keeps its capacity: f_ and fnew_ swap every step (as tq_ and tqnew_)
@@ -381,11 +375,10 @@ class Engine final : public Simulation {
   std::vector<double> m_;
   std::vector<Spin<D>> w_, tq_, tqnew_;  // only with friction (tqnew_: the torques being computed)
   std::vector<double> inv_I_;
-  PairSum sum_;                                          // this step's contact pairs in canonical order
-  std::vector<PairForce> pair_forces_;                   // scratch of the threaded force pass
-  std::vector<std::vector<std::uint64_t>> thread_keys_;  // the pairs each thread of the contact detection found
+  PairSum sum_;                          // this step's contact pairs in canonical order
+  std::vector<PairForce> pair_forces_;   // scratch of the threaded force pass
   int threads_ = 1;
-  std::optional<HGrid<D, B>> grid_;  // built at the first step, rebuilt at every later one
+  std::optional<ContactList<D>> list_;   // kept between steps
   std::vector<Vec<D>> fnew_;         // the forces being computed (swapped with f_)
   StepStats stats_;
   double time_ = 0;

@@ -20,9 +20,10 @@ struct StepStats {
   std::uint64_t wall_contacts = 0;
   std::uint64_t friction_evaluations = 0;  // tangential forces computed
   std::uint64_t gravity_evaluations = 0;   // particles given gravity
-  double seconds_contact_detection = 0;    // HGrid build + query (pair list)
-  double seconds_grid_build = 0;           //   of which: building the HGrid
-  double seconds_query = 0;                //   of which: the query (the model's T)
+  std::uint64_t list_builds = 0;           // contact list rebuilds (every step with skin 0)
+  double seconds_contact_detection = 0;    // the contact list: builds + checks + tests
+  double seconds_grid_build = 0;           //   of which: its builds (HGrid build, search, storing)
+  double seconds_query = 0;                //   of which: the skin check and the test of the candidates
   double seconds_forces = 0;               // contact and wall forces
   double seconds_integration = 0;          // velocity-Verlet updates
 };

@@ -82,6 +82,12 @@ struct Counted {
 struct Uncounted {
   static constexpr bool enabled = false, tests = true;
 };
+/// The pairs alone: as Uncounted, and the returned Counters are left
+/// empty (not even particles_per_level), so that a query on one thread
+/// allocates nothing (a contact list's rebuilds, step after step).
+struct PairsOnly {
+  static constexpr bool enabled = false, tests = true;
+};
 /// The counts alone: every field Counted counts, counted the same, but no
 /// candidate is tested, so the callback is never called and `contacts`
 /// stays 0. The cost T = T_cd + K T_ca (Counters::cost) does not depend on

@@ -43,6 +43,12 @@ class HGrid {
   /// (more particles, a fuller cell range than before). If the input is
   /// rejected (InputError), the grid is left as it was.
   void rebuild(std::span<const Sphere<D>> spheres);
+  /// Same, in a new box (a box that a simulation compresses, shears or
+  /// grows): the levels are laid out again for it (periodic cells fitted to
+  /// the new sides), in arrays kept from earlier calls, so that a box of the
+  /// same number of levels allocates nothing. If the box or the input is
+  /// rejected (InputError), the grid is left as it was, box included.
+  void rebuild(std::span<const Sphere<D>> spheres, const Extent<D>& box);
 
   /// Hands every overlapping pair (distance < r_i + r_j; minimum image in a
   /// periodic box) to f(i, j) exactly once, with i < j the input indices,
@@ -186,6 +192,7 @@ class HGrid {
     std::vector<int> shift, level_of;
     std::vector<double> d_max_of;               // per thread
     std::vector<std::exception_ptr> error_of;   // per thread
+    std::vector<detail::Level<D>> levels;       // rebuild(spheres, box): the new box's levels, swapped in
     std::size_t bytes() const {
       return (key_in.capacity() + key.capacity() + tkey.capacity() + k0.capacity() + tk.capacity()) *
                  sizeof(std::uint64_t) +
@@ -194,7 +201,8 @@ class HGrid {
                  sizeof(std::uint32_t) +
              d_max_of.capacity() * sizeof(double) + error_of.capacity() * sizeof(std::exception_ptr) +
              level_of.capacity() * sizeof(int) +
-             tsph.capacity() * sizeof(Sphere<D>) + shift.capacity() * sizeof(int);
+             tsph.capacity() * sizeof(Sphere<D>) + shift.capacity() * sizeof(int) +
+             levels.capacity() * sizeof(detail::Level<D>);
     }
   };
   /// A build runs on at most one thread per this many particles.

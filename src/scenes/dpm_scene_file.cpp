@@ -1,6 +1,7 @@
 #include "hgridlab/scenes/dpm_scene_file.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 #include <sstream>
@@ -19,7 +20,7 @@ const detail::SceneSections kSections = {
     {"initial", {"d", "n", "nu", "alpha", "omega", "boundary", "placement", "seed", "speed", "velocity_seed"}},
     {"contact", {"contact_time", "restitution", "dt_over_tc", "density"}},
     {"effects", {"friction", "mu", "friction_damping", "gravity"}},
-    {"run", {"steps", "sample_every", "threads"}},
+    {"run", {"steps", "sample_every", "threads", "skin"}},
     {"grids", {"method", "K", "reference_size"}},
 };
 
@@ -109,6 +110,11 @@ DpmScene load_dpm_scene(const std::string& path, const std::string& scale) {
   // predicted speed-up is for one core.
   const std::uint64_t threads = count(rn, "run", "threads", 1);
   s.config.threads = check_threads(static_cast<int>(std::min<std::uint64_t>(threads, kMaxThreads + 1)), "run.threads");
+
+  // The contact list's pair skin (in units of r_min = 1): 0 rebuilds it every
+  // step; the trajectory is the same for any skin.
+  s.config.skin = number(rn, "run", "skin", 0.0);
+  if (!(std::isfinite(s.config.skin) && s.config.skin >= 0)) throw InputError("run.skin", "must be finite and >= 0");
 
   const auto& gr = section(root, "grids");
   s.method = parse_cell_method(text(gr, "grids", "method", "optimal"), "grids.method");

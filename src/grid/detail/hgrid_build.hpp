@@ -27,10 +27,7 @@ HGrid<D, B>::HGrid(std::span<const Sphere<D>> spheres, const Extent<D>& box, con
       throw InputError("sizes", "must be strictly increasing (s_" + std::to_string(h + 1) + " = " +
                                     std::to_string(s[h]) + " <= s_" + std::to_string(h) + ")");
   }
-  for (int a = 0; a < D; ++a)
-    if (!(std::isfinite(box[a]) && box[a] > 0))
-      throw InputError("box", "side " + std::to_string(a + 1) + " must be finite and > 0");
-  levels_ = detail::make_levels<D>(s, box, B);
+  detail::make_levels<D>(s, box, B, levels_);
   Scratch scratch;  // released on return: a grid only constructed keeps no workspace
   build(spheres, scratch);
 }
@@ -38,6 +35,21 @@ HGrid<D, B>::HGrid(std::span<const Sphere<D>> spheres, const Extent<D>& box, con
 template <int D, Boundary B>
 void HGrid<D, B>::rebuild(std::span<const Sphere<D>> spheres) {
   build(spheres, scratch_);
+}
+
+template <int D, Boundary B>
+void HGrid<D, B>::rebuild(std::span<const Sphere<D>> spheres, const Extent<D>& box) {
+  detail::make_levels<D>(params_.sizes, box, B, scratch_.levels);  // checks the box; throws before any change
+  std::swap(levels_, scratch_.levels);
+  const Extent<D> old_box = box_;
+  box_ = box;
+  try {
+    build(spheres, scratch_);  // changes nothing of the grid before the input has passed its checks
+  } catch (...) {
+    std::swap(levels_, scratch_.levels);
+    box_ = old_box;
+    throw;
+  }
 }
 
 template <int D, Boundary B>

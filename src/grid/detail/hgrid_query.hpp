@@ -276,7 +276,7 @@ Counters HGrid<D, B>::empty_counters() const {
   const int L = levels();
   Counters out;
   out.levels = L;
-  out.particles_per_level = particles_per_level();
+  if constexpr (!std::is_same_v<Count, PairsOnly>) out.particles_per_level = particles_per_level();
   if constexpr (Count::enabled) {
     out.accesses_by_level.assign(L * L, 0);
     out.checks_by_level.assign(L * L, 0);

@@ -115,10 +115,15 @@ class KeyWalk {
 
 /// Lays out the levels for a box: fits periodic cells to the box (an integer
 /// number of cells per axis, each at least the requested size unless the box
-/// itself is smaller), and checks the cell count per axis.
+/// itself is smaller), and checks the box's sides and the cell count per
+/// axis, into `levels` (whose capacity is reused; on a throw its content is
+/// unspecified).
 template <int D>
-std::vector<Level<D>> make_levels(const std::vector<double>& sizes, const Extent<D>& box, Boundary b) {
-  std::vector<Level<D>> levels(sizes.size());
+void make_levels(const std::vector<double>& sizes, const Extent<D>& box, Boundary b, std::vector<Level<D>>& levels) {
+  for (int a = 0; a < D; ++a)
+    if (!(std::isfinite(box[a]) && box[a] > 0))
+      throw InputError("box", "side " + std::to_string(a + 1) + " must be finite and > 0");
+  levels.assign(sizes.size(), Level<D>{});
   for (std::size_t h = 0; h < sizes.size(); ++h) {
     Level<D>& L = levels[h];
     L.s_min = std::numeric_limits<double>::infinity();
@@ -138,7 +143,6 @@ std::vector<Level<D>> make_levels(const std::vector<double>& sizes, const Extent
       L.s_min = std::min(L.s_min, L.s[a]);
     }
   }
-  return levels;
 }
 
 }  // namespace hgrid::detail

@@ -8,18 +8,10 @@
 #include <vector>
 
 #include "hgridlab/grid/hgrid.hpp"
+#include "hgridlab/contacts/contact_list.hpp"  // doubling_sizes
 #include "hgridlab/contacts/pair_sum.hpp"
 
 namespace hgrid::detail {
-
-/// Cell sizes for spheres with radii in [rmin, rmax]: doubling from 2 rmin up
-/// to the largest diameter (exponential sizes of ratio 2; one level if
-/// monodisperse). Cheap and within a few tens of per cent of the optimum.
-inline std::vector<double> doubling_sizes(double rmin, double rmax) {
-  std::vector<double> s{2 * rmin * (1 + 1e-9)};
-  while (s.back() < 2 * rmax) s.push_back(std::min(2 * s.back(), 2 * rmax * (1 + 1e-9)));
-  return s;
-}
 
 /// Calls f(i, j) for every pair of spheres closer than r_i + r_j, on
 /// `threads` threads (f as a grid query's callback: base/threads.hpp).
@@ -54,14 +46,7 @@ void neighbour_lists(std::span<const Sphere<D>> spheres, const Extent<D>& box, s
       spheres, box,
       [&](int t, std::uint32_t i, std::uint32_t j) { found[static_cast<std::size_t>(t)].push_back(ps.key(i, j)); }, T);
   ps.gather(found);
-  const std::vector<std::uint64_t>& keys = ps.keys();
-  start.assign(n + 1, 0);
-  nbr.resize(keys.size());
-  for (std::size_t m = 0; m < keys.size(); ++m) {
-    ++start[ps.first(keys[m]) + 1];
-    nbr[m] = ps.second(keys[m]);
-  }
-  for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
+  ps.rows(start, nbr);
 }
 
 }  // namespace hgrid::detail

@@ -76,7 +76,7 @@ void tilted_pair_figures(const Packing& p, PackingQuality& q) {
   double lo = spheres[0].r, hi = lo;
   for (const auto& s : spheres) lo = std::min(lo, s.r), hi = std::max(hi, s.r);
   const TiltedHGrid<D> grid(std::span<const Sphere<D>>(spheres), box,
-                            GridParams{detail::doubling_sizes(lo, hi), Search::bottom_up});
+                            GridParams{doubling_sizes(lo, hi), Search::bottom_up});
   grid.for_each_pair([&](std::uint32_t i, std::uint32_t j) {
     const auto& a = spheres[i].x;
     const auto& b = spheres[j].x;

@@ -1,0 +1,507 @@
+// A contact list for time stepping: the HGrid as a simulation's contact
+// detection, step after step.
+//
+// At every update() the list hands over exactly the pairs with distance
+// < r_i + r_j (minimum image on periodic axes), tested with the grid's own
+// expression (grid/geometry.hpp: dx = x_j - x_i per axis, the minimum image
+// where the axis is periodic, s = ((0 + dx0^2) + dx1^2) [+ dx2^2], s <
+// (r_i + r_j)^2) on the same wrapped coordinates: the same set, bit for
+// bit, as a fresh HGrid of the same spheres. It does not search the grid at
+// every step: it keeps the candidate pairs closer than R_i + R_j, each
+// radius inflated to R_i = r_i (1 + skin_rel) + skin / 2 when the list was
+// built, and tests only those. It is rebuilt (an HGrid of the inflated
+// spheres, rebuilt in place) only when a pair could have come into contact
+// unseen: when the two smallest margins R_i - r_i(now) - |u_i| (u_i the
+// displacement since the build) add up to no more than what the periodic
+// sides' changes can shift an image. This is the rule of LAMMPS's
+// `neigh_modify check yes` (rebuild when a particle has moved half the
+// skin), per particle, with growing radii and a changing box counted, as
+// the packing generator's FIRE relaxation has kept it
+// (packing/detail/gen_relax.cpp); Cabana keeps its VerletList over its
+// LinkedCellList in the same way.
+//
+// Boundaries per axis (periodic or walled, e.g. a pour's `p p f`), any
+// origin, a box whose sides change between steps (set_box). Several
+// threads give the same pairs in the same (canonical) order. In steady
+// state (same particle count, same number of grid levels) an update
+// allocates nothing.
+#pragma once
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <exception>
+#include <limits>
+#include <optional>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "hgridlab/base/clock.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/base/parallel.hpp"
+#include "hgridlab/base/threads.hpp"
+#include "hgridlab/contacts/pair_sum.hpp"
+#include "hgridlab/grid/geometry.hpp"
+#include "hgridlab/grid/hgrid.hpp"
+#include "hgridlab/grid/params.hpp"
+#include "hgridlab/grid/uninit_vector.hpp"
+
+namespace hgrid {
+
+/// A simulation box: sides, lower corner, and the boundary of each axis.
+/// A walled axis k holds centres in [origin_k, origin_k + side_k]; a
+/// periodic one wraps them into [origin_k, origin_k + side_k).
+template <int D>
+struct ListBox {
+  Extent<D> side{};
+  std::array<double, D> origin{};
+  std::array<bool, D> periodic{};
+};
+
+/// Cell sizes doubling from the smallest diameter 2 rmin up to the largest
+/// 2 rmax (one level if monodisperse): cheap, and within a few tens of per
+/// cent of the model's optimum; the default of a contact list and the
+/// packing generator's grid.
+inline std::vector<double> doubling_sizes(double rmin, double rmax) {
+  std::vector<double> s{2 * rmin * (1 + 1e-9)};
+  while (s.back() < 2 * rmax) s.push_back(std::min(2 * s.back(), 2 * rmax * (1 + 1e-9)));
+  return s;
+}
+
+struct ContactListParams {
+  /// Cell sizes s_h for the particles' own radii (e.g. the model's optimum
+  /// for their size distribution, as for a grid rebuilt every step); the
+  /// grid of the inflated spheres uses s_h (1 + skin_rel) + skin, which
+  /// puts every sphere on the level its own radius would have. The last must
+  /// be at least the largest diameter. Empty: doubling_sizes of the
+  /// inflated radii, laid out again when the radii outgrow them.
+  std::vector<double> sizes;
+  Search search = Search::bottom_up;
+  /// Threads of the build, the search and the per-step test (0 = all).
+  int threads = 1;
+  /// The pair's absolute skin: a pair is a candidate within r_i + r_j + skin
+  /// (LAMMPS's `neighbor` skin). >= 0.
+  double skin = 0;
+  /// Each radius inflated by skin_rel r_i besides (a skin that grows with
+  /// the radius, as the packing generator's). >= 0. Both 0: the list is
+  /// rebuilt whenever anything moves.
+  double skin_rel = 0;
+};
+
+/// What a contact list did: counts and seconds since it was made.
+struct ContactListStats {
+  std::uint64_t steps = 0;           // update() calls
+  std::uint64_t builds = 0;          // of them, those that rebuilt the candidates
+  std::uint64_t candidates = 0;      // pairs in the list now
+  std::uint64_t contacts = 0;        // contacts now
+  std::uint64_t candidates_tested = 0;  // summed over the steps
+  double seconds_check = 0;   // reading the positions, the skin check
+  double seconds_build = 0;   // grid build, candidate search, storing the list
+  double seconds_test = 0;    // the per-step test of the candidates
+  double seconds() const { return seconds_check + seconds_build + seconds_test; }
+  double seconds_per_step() const { return steps ? seconds() / static_cast<double>(steps) : 0.0; }
+};
+
+template <int D>
+class ContactList {
+  static_assert(D == 2 || D == 3, "ContactList supports d = 2 and d = 3");
+
+ public:
+  using Vec = std::array<double, D>;
+  static constexpr int dimension = D;
+
+  /// Throws InputError naming the field (box, skin, skin_rel, threads).
+  ContactList(const ListBox<D>& box, ContactListParams params) : params_(std::move(params)) {
+    if (!(std::isfinite(params_.skin) && params_.skin >= 0))
+      throw InputError("skin", "must be finite and >= 0 (got " + format_number(params_.skin) + ")");
+    if (!(std::isfinite(params_.skin_rel) && params_.skin_rel >= 0))
+      throw InputError("skin_rel", "must be finite and >= 0 (got " + format_number(params_.skin_rel) + ")");
+    if (params_.threads < 0) throw InputError("threads", "must be >= 0 (0 = all cores)");
+    check_box(box);
+    box_ = box;
+    mask_ = 0;
+    for (int k = 0; k < D; ++k) mask_ |= box.periodic[k] ? 1u << k : 0u;
+    threads_ = resolve_threads(params_.threads);
+    keys_.resize(static_cast<std::size_t>(threads_));
+  }
+
+  /// A new box (sides and origin; the axes' boundaries stay as they were):
+  /// compression, expansion, a moving wall. Positions handed to the next
+  /// update() are read in it. The list is rebuilt only when the periodic
+  /// sides have changed by more than the skin covers.
+  void set_box(const ListBox<D>& box) {
+    check_box(box);
+    for (int k = 0; k < D; ++k)
+      if (box.periodic[k] != box_.periodic[k])
+        throw InputError("box", "axis " + std::to_string(k + 1) + " must stay " +
+                                    (box_.periodic[k] ? "periodic" : "walled"));
+    box_ = box;
+  }
+  const ListBox<D>& box() const { return box_; }
+
+  /// New positions and radii (user coordinates), one sphere per particle in
+  /// the same order as the contacts' indices. Returns whether the
+  /// candidates were rebuilt. A different count than the last call rebuilds
+  /// (particles inserted or removed). Throws InputError naming the particle
+  /// and the field (a non-finite coordinate, a radius <= 0, a centre outside
+  /// a walled axis, naming the axis), and then leaves the list as it was.
+  bool update(std::span<const Sphere<D>> spheres) {
+    return update_from(spheres.size(), [&](std::size_t i) { return spheres[i]; });
+  }
+  /// Same, from n x D positions (row-major) and n radii.
+  bool update(std::span<const double> positions, std::span<const double> radii) {
+    if (positions.size() != radii.size() * D)
+      throw InputError("positions", "must hold " + std::to_string(D) + " coordinates per radius (got " +
+                                        std::to_string(positions.size()) + " for " + std::to_string(radii.size()) +
+                                        " radii)");
+    return update_from(radii.size(), [&](std::size_t i) {
+      Sphere<D> s;
+      for (int k = 0; k < D; ++k) s.x[k] = positions[i * D + k];
+      s.r = radii[i];
+      return s;
+    });
+  }
+
+  std::size_t size() const { return s_.size(); }
+  /// The contacts as compressed rows: the partners j > i of particle i are
+  /// partners()[start()[i]] .. partners()[start()[i + 1] - 1], ascending.
+  std::span<const std::uint32_t> start() const { return {start_.data(), start_.size()}; }
+  std::span<const std::uint32_t> partners() const { return {nbr_.data(), nbr_.size()}; }
+  std::size_t contacts() const { return nbr_.size(); }
+  std::size_t candidates() const { return cand_.size(); }
+  /// Calls f(i, j), i < j, for every contact, in canonical order (i, then j
+  /// ascending).
+  template <class F>
+  void for_each_contact(F&& f) const {
+    for (std::size_t i = 0; i + 1 < start_.size(); ++i)
+      for (std::uint32_t m = start_[i]; m < start_[i + 1]; ++m) f(static_cast<std::uint32_t>(i), nbr_[m]);
+  }
+  /// The spheres as the test sees them: centres relative to the origin,
+  /// wrapped on periodic axes.
+  std::span<const Sphere<D>> spheres() const { return {s_.data(), s_.size()}; }
+  /// The image shift of pair (i, j): x_j - x_i + shift is the minimum-image
+  /// displacement from i to j (0 or +-side on each periodic axis); what the
+  /// relative velocity across a moving periodic boundary needs.
+  Vec image_shift(std::uint32_t i, std::uint32_t j) const {
+    Vec out{};
+    for (int k = 0; k < D; ++k)
+      if (box_.periodic[k]) {
+        const double dx = s_[j].x[k] - s_[i].x[k];
+        out[k] = detail::min_image(dx, box_.side[k]) - dx;
+      }
+    return out;
+  }
+  /// The minimum-image displacement x_j - x_i, as the test computes it.
+  Vec displacement(std::uint32_t i, std::uint32_t j) const {
+    Vec d;
+    for (int k = 0; k < D; ++k) {
+      d[k] = s_[j].x[k] - s_[i].x[k];
+      if (box_.periodic[k]) d[k] = detail::min_image(d[k], box_.side[k]);
+    }
+    return d;
+  }
+  const ContactListStats& stats() const { return stats_; }
+  const ContactListParams& params() const { return params_; }
+  /// Cell sizes of the grid of the last build (empty before the first).
+  std::vector<double> grid_sizes() const {
+    if (gw_) return gw_->sizes();
+    if (gp_) return gp_->sizes();
+    return {};
+  }
+
+ private:
+  /// Margins are compared with this much slack, relative to the box: the
+  /// wrap and the differences round by a few units in the last place.
+  static constexpr double kRoundingSlack = 1e-12;
+
+  static void check_box(const ListBox<D>& box) {
+    for (int k = 0; k < D; ++k) {
+      if (!(std::isfinite(box.side[k]) && box.side[k] > 0))
+        throw InputError("box", "side " + std::to_string(k + 1) + " must be finite and > 0 (got " +
+                                    format_number(box.side[k]) + ")");
+      if (!std::isfinite(box.origin[k]))
+        throw InputError("origin", "coordinate " + std::to_string(k + 1) + " must be finite");
+    }
+  }
+
+  double inflated(double r) const { return r * (1 + params_.skin_rel) + 0.5 * params_.skin; }
+
+  /// The test of the grid (grid/geometry.hpp), per axis: periodic axes (bits
+  /// of Mask) take the minimum image.
+  template <unsigned Mask>
+  bool touching(const Sphere<D>& p, const Sphere<D>& q) const {
+    double s = 0.0;
+    for (int k = 0; k < D; ++k) {
+      double dx = q.x[k] - p.x[k];
+      if (Mask & (1u << k)) dx = detail::min_image(dx, box_.side[k]);
+      s += dx * dx;
+    }
+    const double rs = p.r + q.r;
+    return s < rs * rs;
+  }
+
+  /// Rows [i0, i1) of threads blocks.
+  std::pair<std::size_t, std::size_t> block(std::size_t b, std::size_t blocks) const {
+    const std::size_t n = s_.size();
+    return {n * b / blocks, n * (b + 1) / blocks};
+  }
+  std::size_t blocks_for(std::size_t n) const {
+    return std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(threads_), n / kMinRowsPerThread));
+  }
+  static constexpr std::size_t kMinRowsPerThread = 2048;
+
+  template <class Get>
+  bool update_from(std::size_t n, Get&& get) {
+    if (n >= (std::size_t{1} << 31)) throw InputError("n", "at most 2^31 - 1 particles");
+    auto t0 = Clock::now();
+    // Read and check every particle into next_, and find the two smallest
+    // margins, on blocks of particles; nothing of the list changes before
+    // every particle has passed.
+    next_.resize(n);
+    raw_.resize(n);
+    const bool same_count = built_ && n == xref_.size();
+    const std::size_t B = blocks_for(n);
+    block_min_.assign(2 * B, std::numeric_limits<double>::infinity());
+    block_error_.assign(B, nullptr);
+    detail::parallel_for(static_cast<int>(B), B, [&](std::size_t b, int) {
+      const std::size_t i0 = n * b / B, i1 = n * (b + 1) / B;
+      double m1 = std::numeric_limits<double>::infinity(), m2 = m1;
+      try {
+        for (std::size_t i = i0; i < i1; ++i) {
+          const Sphere<D> q = get(i);
+          if (!(std::isfinite(q.r) && q.r > 0))
+            throw InputError("radius", "particle " + std::to_string(i) + " has radius " + format_number(q.r) +
+                                           " (must be finite and > 0)");
+          Sphere<D> local;
+          local.r = q.r;
+          for (int k = 0; k < D; ++k) {
+            if (!std::isfinite(q.x[k]))
+              throw InputError("position", "particle " + std::to_string(i) + " has a non-finite coordinate on axis " +
+                                               std::to_string(k + 1));
+            const double x = q.x[k] - box_.origin[k];
+            if (box_.periodic[k]) {
+              local.x[k] = detail::wrap(x, box_.side[k]);
+            } else {
+              if (x < 0 || x > box_.side[k])
+                throw InputError("position", "particle " + std::to_string(i) + " left the walled axis " +
+                                                 std::to_string(k + 1) + ": its centre " + format_number(q.x[k]) +
+                                                 " is outside [" + format_number(box_.origin[k]) + ", " +
+                                                 format_number(box_.origin[k] + box_.side[k]) + "]");
+              local.x[k] = x;
+            }
+          }
+          next_[i] = local;
+          raw_[i] = q.x;
+          if (same_count) {
+            double u2 = 0;
+            for (int k = 0; k < D; ++k) {
+              double u = q.x[k] - xref_[i][k];
+              if (box_.periodic[k]) u = detail::min_image(u, box_.side[k]);
+              u2 += u * u;
+            }
+            const double m = rbig_[i] - q.r - std::sqrt(u2);
+            if (m < m1) {
+              m2 = m1;
+              m1 = m;
+            } else if (m < m2) {
+              m2 = m;
+            }
+          }
+        }
+      } catch (...) {
+        block_error_[b] = std::current_exception();
+      }
+      block_min_[2 * b] = m1;
+      block_min_[2 * b + 1] = m2;
+    });
+    for (const auto& e : block_error_)
+      if (e) std::rethrow_exception(e);  // blocks in index order: the lowest particle's error
+    bool rebuild = !same_count;
+    if (!rebuild) {
+      double m1 = std::numeric_limits<double>::infinity(), m2 = m1;
+      for (const double m : block_min_) {
+        if (m < m1) {
+          m2 = m1;
+          m1 = m;
+        } else if (m < m2) {
+          m2 = m;
+        }
+      }
+      double shift2 = 0, scale = 0;  // how far the periodic sides' changes move an image
+      for (int k = 0; k < D; ++k) {
+        scale = std::max(scale, box_.side[k] + std::abs(box_.origin[k]));
+        if (box_.periodic[k]) shift2 += (box_.side[k] - side_built_[k]) * (box_.side[k] - side_built_[k]);
+      }
+      rebuild = n > 1 && m1 + m2 <= std::sqrt(shift2) + kRoundingSlack * (scale + 2 * rbig_max_);
+    }
+    stats_.seconds_check += seconds_since(t0);
+    if (rebuild) {
+      t0 = Clock::now();
+      build();  // may throw (sizes below the inflated diameters): nothing committed yet
+      stats_.seconds_build += seconds_since(t0);
+      ++stats_.builds;
+    } else {
+      s_.swap(next_);
+    }
+    t0 = Clock::now();
+    switch (mask_) {
+      case 0: test<0>(); break;
+      case 1: test<1>(); break;
+      case 2: test<2>(); break;
+      case 3: test<3>(); break;
+      case 4: test<4>(); break;
+      case 5: test<5>(); break;
+      case 6: test<6>(); break;
+      default: test<7>(); break;
+    }
+    stats_.seconds_test += seconds_since(t0);
+    ++stats_.steps;
+    stats_.candidates = cand_.size();
+    stats_.contacts = nbr_.size();
+    stats_.candidates_tested += cand_.size();
+    return rebuild;
+  }
+
+  /// The candidates of the spheres in next_ (inflated), then commits them.
+  void build() {
+    const std::size_t n = next_.size();
+    gs_.resize(n);
+    double rmin = std::numeric_limits<double>::infinity(), rmax = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      gs_[i].x = next_[i].x;
+      gs_[i].r = inflated(next_[i].r);
+      rmin = std::min(rmin, gs_[i].r);
+      rmax = std::max(rmax, gs_[i].r);
+    }
+    // The grid's box: a walled axis of a box with a periodic one is laid out
+    // as periodic, padded so that no image of a walled axis comes within any
+    // candidate distance (2 R_max) and every real candidate keeps its plain
+    // difference (|dx| < 2 R_max <= side / 2).
+    Extent<D> gbox;
+    for (int k = 0; k < D; ++k)
+      gbox[k] = box_.periodic[k] || mask_ == 0 ? box_.side[k]
+                                               : std::max(box_.side[k] + 2 * rmax, 4 * rmax) * (1 + 1e-9);
+    const int T = threads_;
+    GridParams& gp = grid_params_;  // kept: assigning the sizes again allocates nothing
+    gp.search = params_.search;
+    gp.threads = T;
+    if (params_.sizes.empty() && n > 0 &&
+        (default_sizes_.empty() || default_sizes_.back() < 2 * rmax || default_sizes_.front() > 3 * rmin ||
+         default_sizes_.front() < rmin / 2))
+      default_sizes_ = doubling_sizes(rmin, rmax);
+    if (params_.sizes.empty()) {
+      gp.sizes = default_sizes_;
+    } else {
+      gp.sizes.resize(params_.sizes.size());
+      for (std::size_t h = 0; h < gp.sizes.size(); ++h) gp.sizes[h] = inflated(0.5 * params_.sizes[h]) * 2;
+    }
+    for (auto& k : keys_) k.clear();
+    if (!sum_ || pair_n_ != n) {
+      sum_.emplace(n);
+      pair_n_ = n;
+    }
+    PairSum& ps = *sum_;
+    const std::span<const Sphere<D>> gspan(gs_.data(), gs_.size());
+    const auto search = [&](auto& grid) {
+      if (!grid || grid->params().sizes != gp.sizes) grid.emplace(gspan, gbox, gp);  // a new grid: new sizes
+      else grid->rebuild(gspan, gbox);
+      if (T <= 1)
+        grid->template for_each_pair<PairsOnly>([&](std::uint32_t i, std::uint32_t j) { keys_[0].push_back(ps.key(i, j)); });
+      else
+        grid->template for_each_pair<PairsOnly>(
+            [&](int t, std::uint32_t i, std::uint32_t j) { keys_[static_cast<std::size_t>(t)].push_back(ps.key(i, j)); });
+    };
+    if (n > 0) {
+      if (mask_ == 0) search(gw_);
+      else search(gp_);
+    }
+    // Canonical order, then compressed rows.
+    ps.gather(keys_);
+    ps.rows(cstart_, cand_);
+    // Commit.
+    s_.swap(next_);
+    xref_.swap(raw_);
+    rbig_.resize(n);
+    rbig_max_ = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      rbig_[i] = gs_[i].r;
+      rbig_max_ = std::max(rbig_max_, gs_[i].r);
+    }
+    for (int k = 0; k < D; ++k) side_built_[k] = box_.side[k];
+    built_ = true;
+  }
+
+  /// The per-step test of every candidate: contacts into start_ / nbr_.
+  template <unsigned Mask>
+  void test() {
+    const std::size_t n = s_.size();
+    start_.resize(n + 1);
+    nbr_.resize(cand_.size());  // at most every candidate; cut to the contacts below
+    const Sphere<D>* const s = s_.data();
+    const std::uint32_t* const cs = cstart_.data();
+    const std::uint32_t* const cand = cand_.data();
+    std::uint32_t* const out = nbr_.data();
+    std::uint32_t* const st = start_.data();
+    const std::size_t B = blocks_for(n);
+    block_count_.resize(B + 1);
+    // Block b writes its rows' contacts at its own candidates' place (never
+    // more than it has), then the blocks move down into one run.
+    detail::parallel_for(static_cast<int>(B), B, [&](std::size_t b, int) {
+      const std::size_t i0 = n * b / B, i1 = n * (b + 1) / B;
+      std::uint32_t w = cs[i0];
+      for (std::size_t i = i0; i < i1; ++i) {
+        st[i] = w;
+        const Sphere<D> p = s[i];
+        for (std::uint32_t m = cs[i]; m < cs[i + 1]; ++m) {
+          const std::uint32_t j = cand[m];
+          out[w] = j;
+          w += touching<Mask>(p, s[j]);
+        }
+      }
+      block_count_[b] = w - cs[i0];
+    });
+    std::uint32_t at = 0;
+    for (std::size_t b = 0; b < B; ++b) {
+      const std::size_t i0 = n * b / B, i1 = n * (b + 1) / B;
+      const std::uint32_t from = cs[i0], count = block_count_[b];
+      if (from != at) {
+        std::memmove(out + at, out + from, count * sizeof(std::uint32_t));
+        for (std::size_t i = i0; i < i1; ++i) st[i] -= from - at;
+      }
+      at += count;
+    }
+    st[n] = at;
+    nbr_.resize(at);
+  }
+
+  ContactListParams params_;
+  ListBox<D> box_{};
+  unsigned mask_ = 0;  // bit k: axis k periodic
+  int threads_ = 1;
+  bool built_ = false;
+  std::vector<Sphere<D>> s_, next_;  // the spheres as tested (local, wrapped); the update being read
+  std::vector<Vec> xref_, raw_;      // user coordinates at the last build; of the update being read
+  std::vector<double> rbig_;         // inflated radii at the last build
+  double rbig_max_ = 0;
+  Extent<D> side_built_{};
+  std::vector<Sphere<D>> gs_;        // the inflated spheres of a build
+  std::vector<double> default_sizes_;
+  GridParams grid_params_;
+  std::optional<HGrid<D, Boundary::walls>> gw_;     // every axis walled
+  std::optional<HGrid<D, Boundary::periodic>> gp_;  // any axis periodic (walled ones padded)
+  std::optional<PairSum> sum_;
+  std::size_t pair_n_ = 0;
+  std::vector<std::vector<std::uint64_t>> keys_;  // per thread of a build's search
+  std::vector<std::uint32_t> cstart_, cand_;      // the candidates, compressed rows
+  std::vector<std::uint32_t> start_;
+  detail::UninitVector<std::uint32_t> nbr_;       // the contacts
+  std::vector<std::uint32_t> block_count_;
+  std::vector<double> block_min_;
+  std::vector<std::exception_ptr> block_error_;
+  ContactListStats stats_;
+};
+
+}  // namespace hgrid

@@ -1,0 +1,275 @@
+// ContactList: the contact set at every step of seeded trajectories equals
+// an O(N^2) brute force with the box's minimum image per axis, and, where
+// every axis has one boundary, a fresh HGrid's set of the same spheres, bit
+// for bit; per-axis boundaries, an origin, a compressing box, growing radii,
+// inserted particles, 2D and 3D, both search directions, 1 and 2 threads;
+// a bad update leaves the list as it was; steady state allocates nothing.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <set>
+
+#include "hgridlab/contacts/contact_list.hpp"
+#include "support.hpp"
+
+namespace hgrid::test {
+namespace {
+
+/// The pairs of the spheres in user coordinates, by brute force: centres
+/// relative to the origin, wrapped on periodic axes, the grid's expression
+/// per axis.
+template <int D>
+std::vector<Pair> brute(const std::vector<Sphere<D>>& user, const ListBox<D>& box) {
+  std::vector<Sphere<D>> s = user;
+  for (auto& p : s)
+    for (int k = 0; k < D; ++k) {
+      p.x[k] -= box.origin[k];
+      if (box.periodic[k]) p.x[k] = detail::wrap(p.x[k], box.side[k]);
+    }
+  std::vector<Pair> out;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    for (std::size_t j = i + 1; j < s.size(); ++j) {
+      double d2 = 0.0;
+      for (int k = 0; k < D; ++k) {
+        double dx = s[j].x[k] - s[i].x[k];
+        if (box.periodic[k]) dx = detail::min_image(dx, box.side[k]);
+        d2 += dx * dx;
+      }
+      const double rs = s[i].r + s[j].r;
+      if (d2 < rs * rs) out.emplace_back(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
+    }
+  return out;
+}
+
+template <int D>
+std::vector<Pair> list_pairs(const ContactList<D>& list) {
+  std::vector<Pair> out;
+  list.for_each_contact([&](std::uint32_t i, std::uint32_t j) { out.emplace_back(i, j); });
+  return out;
+}
+
+/// A fresh HGrid's pairs of the same spheres (every axis one boundary).
+template <int D, Boundary B>
+std::vector<Pair> fresh_grid(const std::vector<Sphere<D>>& user, const ListBox<D>& box) {
+  std::vector<Sphere<D>> s = user;
+  double rmin = s[0].r, rmax = s[0].r;
+  for (auto& p : s) {
+    for (int k = 0; k < D; ++k) p.x[k] -= box.origin[k];
+    rmin = std::min(rmin, p.r);
+    rmax = std::max(rmax, p.r);
+  }
+  const HGrid<D, B> grid(s, box.side, GridParams{doubling_sizes(rmin, rmax), Search::top_down, 1});
+  std::vector<Pair> out;
+  grid.for_each_pair([&](std::uint32_t i, std::uint32_t j) { out.emplace_back(i, j); });
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+struct Case {
+  std::array<bool, 3> periodic;
+  Search search;
+  int threads;
+  double skin, skin_rel;
+  bool compress = false;  // the box shrinks 0.2 % a step (positions scaled with it)
+  bool grow = false;      // the radii grow 0.1 % a step
+  bool insert = false;    // 5 particles inserted every 10 steps
+  std::uint64_t seed = 1;
+};
+
+/// A trajectory of Brownian moves; the list's contacts against the brute
+/// force (and a fresh grid, where one boundary holds) at every step.
+template <int D>
+ContactListStats run_trajectory(const Case& c, std::size_t n = 400, int steps = 60) {
+  std::mt19937_64 rng(c.seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), u01(0.0, 1.0);
+  Scene<D> sc = random_scene<D>(n, 0.35, -2.0, 4.0, Boundary::walls, c.seed);
+  ListBox<D> box;
+  for (int k = 0; k < D; ++k) {
+    box.side[k] = sc.box[k];
+    box.origin[k] = (k == 0 ? -3.5 : 12.25) * (k + 1);
+    box.periodic[k] = c.periodic[k];
+  }
+  std::vector<Sphere<D>> user = sc.spheres;
+  for (auto& p : user)
+    for (int k = 0; k < D; ++k) p.x[k] += box.origin[k];
+  ContactListParams params;
+  params.search = c.search;
+  params.threads = c.threads;
+  params.skin = c.skin;
+  params.skin_rel = c.skin_rel;
+  ContactList<D> list(box, params);
+  bool all_periodic = true, all_walls = true;
+  for (int k = 0; k < D; ++k) (c.periodic[k] ? all_walls : all_periodic) = false;
+  const double step = 0.03;  // per axis, in units of the smallest radius
+  for (int t = 0; t < steps; ++t) {
+    if (t > 0) {
+      if (c.compress) {
+        ListBox<D> nb = box;
+        for (int k = 0; k < D; ++k) nb.side[k] = box.side[k] * 0.998;
+        for (auto& p : user)
+          for (int k = 0; k < D; ++k) p.x[k] = box.origin[k] + (p.x[k] - box.origin[k]) * 0.998;
+        box = nb;
+        list.set_box(box);
+      }
+      for (auto& p : user) {
+        for (int k = 0; k < D; ++k) {
+          double x = p.x[k] + step * u(rng);
+          if (!box.periodic[k]) x = std::clamp(x, box.origin[k], box.origin[k] + box.side[k]);
+          // periodic axes: left unwrapped half the time, as codes that keep images hand them over
+          else if (t % 2) x = box.origin[k] + detail::wrap(x - box.origin[k], box.side[k]);
+          p.x[k] = x;
+        }
+        if (c.grow) p.r *= 1.001;
+      }
+      if (c.insert && t % 10 == 0)
+        for (int m = 0; m < 5; ++m) {
+          Sphere<D> p;
+          for (int k = 0; k < D; ++k) p.x[k] = box.origin[k] + u01(rng) * box.side[k];
+          p.r = 1.0 + 3.0 * u01(rng);
+          user.push_back(p);
+        }
+    }
+    list.update(user);
+    const auto got = list_pairs(list);
+    const auto want = brute(user, box);
+    if (got != want) {
+      ADD_FAILURE() << "D = " << D << ", step " << t << ", seed " << c.seed << ": " << got.size()
+                    << " contacts, brute force " << want.size();
+      break;
+    }
+    if ((all_walls && got != fresh_grid<D, Boundary::walls>(user, box)) ||
+        (all_periodic && got != fresh_grid<D, Boundary::periodic>(user, box))) {
+      ADD_FAILURE() << "D = " << D << ", step " << t << ", seed " << c.seed << ": not a fresh grid's pairs";
+      break;
+    }
+    // The compressed rows and the image shifts agree with the pairs.
+    EXPECT_EQ(list.start().back(), list.contacts());
+    if (!got.empty()) {
+      const auto [i, j] = got[got.size() / 2];
+      const auto sh = list.image_shift(i, j), d = list.displacement(i, j);
+      for (int k = 0; k < D; ++k) EXPECT_EQ(d[k], list.spheres()[j].x[k] - list.spheres()[i].x[k] + sh[k]);
+    }
+  }
+  return list.stats();
+}
+
+constexpr std::array<bool, 3> kWalls{false, false, false}, kPeriodic{true, true, true}, kPour{true, true, false},
+    kSlab{false, true, false};
+
+TEST(ContactList, MatchesBruteForceAndFreshGridEveryStep) {
+  std::uint64_t seed = 11;
+  for (const auto& per : {kWalls, kPeriodic, kPour, kSlab})
+    for (const Search s : {Search::top_down, Search::bottom_up})
+      for (const int threads : {1, 2}) {
+        const Case c{per, s, threads, 0.4, 0.05, false, false, false, seed++};
+        SCOPED_TRACE(testing::Message() << "periodic " << per[0] << per[1] << per[2] << ", " << to_string(s)
+                                        << ", threads " << threads << ", seed " << c.seed);
+        const auto st3 = run_trajectory<3>(c);
+        const auto st2 = run_trajectory<2>(c);
+        // With a skin the list is rebuilt far less often than every step.
+        EXPECT_LT(st3.builds, st3.steps / 3);
+        EXPECT_LT(st2.builds, st2.steps / 3);
+      }
+}
+
+TEST(ContactList, ZeroSkinRebuildsEveryStepAndStaysExact) {
+  const auto st = run_trajectory<3>(Case{kPour, Search::bottom_up, 1, 0.0, 0.0, false, false, false, 5}, 300, 20);
+  EXPECT_EQ(st.builds, st.steps);
+}
+
+TEST(ContactList, CompressionGrowthAndInsertion) {
+  std::uint64_t seed = 101;
+  for (const auto& per : {kWalls, kPeriodic, kPour})
+    for (const int threads : {1, 2}) {
+      SCOPED_TRACE(testing::Message() << "periodic " << per[0] << per[1] << per[2] << ", threads " << threads);
+      run_trajectory<3>(Case{per, Search::bottom_up, threads, 0.3, 0.05, true, false, false, seed++});
+      run_trajectory<2>(Case{per, Search::top_down, threads, 0.3, 0.05, false, true, false, seed++});
+      run_trajectory<3>(Case{per, Search::top_down, threads, 0.3, 0.05, false, false, true, seed++});
+      run_trajectory<2>(Case{per, Search::bottom_up, threads, 0.2, 0.0, true, true, true, seed++});
+    }
+}
+
+TEST(ContactList, ManyThreadsSamePairsInSameOrder) {
+  // Blocks of rows are cut per 2048 particles: enough particles for 4 blocks.
+  Scene<3> sc = random_scene<3>(10000, 0.3, -3.0, 5.0, Boundary::periodic, 7);
+  ListBox<3> box{sc.box, {}, kPeriodic};
+  std::vector<std::vector<Pair>> got;
+  for (const int threads : {1, 4}) {
+    ContactList<3> list(box, ContactListParams{{}, Search::bottom_up, threads, 0.3, 0.0});
+    list.update(sc.spheres);
+    for (auto& p : sc.spheres) p.x[0] += 0.01;
+    list.update(sc.spheres);
+    for (auto& p : sc.spheres) p.x[0] -= 0.01;
+    got.push_back(list_pairs(list));
+  }
+  EXPECT_EQ(got[0], got[1]);
+  EXPECT_EQ(got[0], brute(sc.spheres, box));
+}
+
+TEST(ContactList, LeavingAWalledAxisIsOneErrorAndChangesNothing) {
+  Scene<3> sc = random_scene<3>(200, 0.3, 0.0, 2.0, Boundary::walls, 3);
+  ListBox<3> box{sc.box, {1.0, 2.0, 3.0}, kPour};
+  for (auto& p : sc.spheres)
+    for (int k = 0; k < 3; ++k) p.x[k] += box.origin[k];
+  ContactList<3> list(box, ContactListParams{{}, Search::bottom_up, 1, 0.5, 0.0});
+  list.update(sc.spheres);
+  const auto before = list_pairs(list);
+  const auto stats = list.stats();
+  auto moved = sc.spheres;
+  moved[7].x[2] = box.origin[2] + box.side[2] + 0.5;  // through the top
+  try {
+    list.update(moved);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "position");
+    EXPECT_NE(std::string(e.what()).find("particle 7 left the walled axis 3"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(list_pairs(list), before);
+  EXPECT_EQ(list.stats().steps, stats.steps);
+  // A periodic axis wraps instead.
+  moved = sc.spheres;
+  moved[7].x[0] += 3 * box.side[0];
+  list.update(moved);
+  EXPECT_EQ(list_pairs(list), brute(moved, box));
+  // Bad parameters name their field.
+  EXPECT_THROW((ContactList<3>(box, ContactListParams{{}, Search::bottom_up, 1, -1.0, 0.0})), InputError);
+  ListBox<3> flat = box;
+  flat.side[1] = 0;
+  EXPECT_THROW(list.set_box(flat), InputError);
+  ListBox<3> other = box;
+  other.periodic[2] = true;
+  EXPECT_THROW(list.set_box(other), InputError);
+}
+
+TEST(ContactList, SteadyStateAllocatesNothing) {
+  if (!counts_allocations()) GTEST_SKIP() << "allocations are not counted under AddressSanitizer";
+  const Scene<3> sc = random_scene<3>(3000, 0.4, -3.0, 4.0, Boundary::walls, 9);
+  // A breathing box (the periodic side 0.5 % shorter for four steps, the
+  // centres scaled with it, then back) and particles moving back and forth
+  // within their skins: the sizes repeat every eight steps, and the list is
+  // rebuilt (in the new box) when the box changes, else only tested.
+  std::vector<Sphere<3>> s = sc.spheres;
+  ListBox<3> box{sc.box, {}, kPour};
+  ContactList<3> list(box, ContactListParams{{}, Search::bottom_up, 1, 0.2, 0.0});
+  const auto step = [&](int t) {
+    const double f = t % 8 < 4 ? 1.0 : 0.995;
+    box.side[0] = sc.box[0] * f;
+    for (std::size_t i = 0; i < s.size(); ++i)
+      for (int k = 0; k < 3; ++k)
+        s[i].x[k] = std::clamp((k == 0 ? f : 1.0) * sc.spheres[i].x[k] + (t % 2 ? 0.03 : 0.0), 0.0, box.side[k]);
+    list.set_box(box);
+    list.update(s);
+  };
+  for (int t = 0; t < 16; ++t) step(t);  // the arrays reach their sizes
+  const std::uint64_t builds = list.stats().builds;
+  const std::size_t before = allocations();
+  for (int t = 16; t < 48; ++t) step(t);
+  EXPECT_EQ(allocations() - before, 0u);
+  EXPECT_GT(list.stats().builds, builds + 2);                 // the counted steps include rebuilds
+  EXPECT_LT(list.stats().builds, list.stats().steps);          // and steps that only test
+  EXPECT_EQ(list_pairs(list), brute(s, box));
+}
+
+}  // namespace
+}  // namespace hgrid::test
