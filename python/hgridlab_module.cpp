@@ -267,6 +267,7 @@ class PyContactList {
           out["contacts"] = s.contacts;
           out["seconds_check"] = s.seconds_check;
           out["seconds_build"] = s.seconds_build;
+          out["seconds_grid"] = s.seconds_grid;
           out["seconds_test"] = s.seconds_test;
           out["seconds_per_step"] = s.seconds_per_step();
           out["grid_sizes"] = l.grid_sizes();

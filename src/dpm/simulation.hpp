@@ -22,8 +22,9 @@ struct StepStats {
   std::uint64_t gravity_evaluations = 0;   // particles given gravity
   std::uint64_t list_builds = 0;           // contact list rebuilds (every step with skin 0)
   double seconds_contact_detection = 0;    // the contact list: builds + checks + tests
-  double seconds_grid_build = 0;           //   of which: its builds (HGrid build, search, storing)
-  double seconds_query = 0;                //   of which: the skin check and the test of the candidates
+  double seconds_grid_build = 0;           //   of which: building the HGrid
+  double seconds_query = 0;                //   of which: the rest (the search, storing the list, the skin
+                                           //   check, the test of the candidates)
   double seconds_forces = 0;               // contact and wall forces
   double seconds_integration = 0;          // velocity-Verlet updates
 };

@@ -111,9 +111,10 @@ DpmScene load_dpm_scene(const std::string& path, const std::string& scale) {
   const std::uint64_t threads = count(rn, "run", "threads", 1);
   s.config.threads = check_threads(static_cast<int>(std::min<std::uint64_t>(threads, kMaxThreads + 1)), "run.threads");
 
-  // The contact list's pair skin (in units of r_min = 1): 0 rebuilds it every
-  // step; the trajectory is the same for any skin.
-  s.config.skin = number(rn, "run", "skin", 0.0);
+  // The pair skin of the scene's contact-list run (in units of r_min = 1;
+  // 0: rebuilt every step); the trajectory is the same for any skin. 1.0:
+  // the faster of 0.5 and 1.0 on the free-cooling scene (docs/PERFORMANCE.md).
+  s.config.skin = number(rn, "run", "skin", 1.0);
   if (!(std::isfinite(s.config.skin) && s.config.skin >= 0)) throw InputError("run.skin", "must be finite and >= 0");
 
   const auto& gr = section(root, "grids");
