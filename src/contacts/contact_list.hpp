@@ -244,11 +244,7 @@ class ContactList {
     return s < rs * rs;
   }
 
-  /// Rows [i0, i1) of threads blocks.
-  std::pair<std::size_t, std::size_t> block(std::size_t b, std::size_t blocks) const {
-    const std::size_t n = s_.size();
-    return {n * b / blocks, n * (b + 1) / blocks};
-  }
+  /// Blocks of rows (one per thread, at most one per kMinRowsPerThread).
   std::size_t blocks_for(std::size_t n) const {
     return std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(threads_), n / kMinRowsPerThread));
   }
