@@ -21,6 +21,7 @@
 #include "hgridlab/grid/uninit_vector.hpp"
 #include "hgridlab/domain/decomposition.hpp"
 #include "hgridlab/domain/decomposed_query.hpp"
+#include "hgridlab/contacts/contact_history.hpp"
 #include "hgridlab/contacts/contact_list.hpp"
 #include "hgridlab/contacts/pair_keys.hpp"
 #include "hgridlab/contacts/pair_sum.hpp"

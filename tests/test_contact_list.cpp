@@ -10,6 +10,7 @@
 #include <random>
 #include <set>
 
+#include "hgridlab/contacts/contact_history.hpp"
 #include "hgridlab/contacts/contact_list.hpp"
 #include "support.hpp"
 
@@ -269,6 +270,74 @@ TEST(ContactList, SteadyStateAllocatesNothing) {
   EXPECT_GT(list.stats().builds, builds + 2);                 // the counted steps include rebuilds
   EXPECT_LT(list.stats().builds, list.stats().steps);          // and steps that only test
   EXPECT_EQ(list_pairs(list), brute(s, box));
+}
+
+}  // namespace
+}  // namespace hgrid::test
+
+namespace hgrid::test {
+namespace {
+
+/// Each contact's value is its key (ids) the first time it is seen, carried
+/// after: a value that comes back different, or a new contact with a
+/// non-default value, shows a lost or misplaced history.
+TEST(ContactHistory, CarriesValuesByIdsThroughReorderingInsertionAndRemoval) {
+  Scene<3> sc = random_scene<3>(600, 0.35, -2.0, 3.0, Boundary::periodic, 31);
+  ListBox<3> box{sc.box, {}, kPeriodic};
+  ContactList<3> list(box, ContactListParams{{}, Search::bottom_up, 1, 0.3, 0.0});
+  ContactHistory<std::uint64_t> hist;
+  std::vector<std::uint32_t> ids(sc.spheres.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<std::uint32_t>(1000 + 3 * i);  // increasing
+  std::uint32_t next_id = 1000 + 3 * static_cast<std::uint32_t>(ids.size());
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::set<std::uint64_t> before;  // the contacts (as id keys) of the last step
+  std::size_t carried_total = 0;
+  for (int t = 0; t < 40; ++t) {
+    if (t > 0) {
+      for (auto& p : sc.spheres)
+        for (int k = 0; k < 3; ++k) p.x[k] += 0.05 * u(rng);
+      if (t % 7 == 0) {  // reorder: a shuffle of particles with their ids
+        std::vector<std::size_t> perm(ids.size());
+        for (std::size_t i = 0; i < perm.size(); ++i) perm[i] = i;
+        std::shuffle(perm.begin(), perm.end(), rng);
+        auto s2 = sc.spheres;
+        auto id2 = ids;
+        for (std::size_t i = 0; i < perm.size(); ++i) s2[i] = sc.spheres[perm[i]], id2[i] = ids[perm[i]];
+        sc.spheres.swap(s2);
+        ids.swap(id2);
+      }
+      if (t % 5 == 0) {  // remove two, insert three
+        sc.spheres.erase(sc.spheres.begin() + 10, sc.spheres.begin() + 12);
+        ids.erase(ids.begin() + 10, ids.begin() + 12);
+        for (int m = 0; m < 3; ++m) {
+          sc.spheres.push_back(Sphere<3>{{sc.box[0] * 0.5 + m, sc.box[1] * 0.5, sc.box[2] * 0.5}, 1.5});
+          ids.push_back(next_id++);
+        }
+      }
+    }
+    list.update(sc.spheres);
+    hist.update(list, ids);
+    std::set<std::uint64_t> now;
+    std::size_t m = 0, carried = 0;
+    list.for_each_contact([&](std::uint32_t i, std::uint32_t j) {
+      const std::uint64_t a = std::min(ids[i], ids[j]), b = std::max(ids[i], ids[j]);
+      const std::uint64_t key = (a << 32) | b;
+      now.insert(key);
+      std::uint64_t& v = hist.values()[m++];
+      if (before.count(key)) {
+        EXPECT_EQ(v, key) << "step " << t << ": a persisting contact lost its value";
+        ++carried;
+      } else {
+        EXPECT_EQ(v, 0u) << "step " << t << ": a new contact came with a value";
+      }
+      v = key;
+    });
+    EXPECT_EQ(hist.carried(), carried);
+    carried_total += carried;
+    before.swap(now);
+  }
+  EXPECT_GT(carried_total, 1000u);
 }
 
 }  // namespace

@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <exception>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "hgridlab/base/parallel.hpp"
@@ -69,12 +70,20 @@ class PairSum {
   /// with R r = compute(i, j) (i < j), second(r, p) if p is j, first(r, p)
   /// if p is i; then end(p). compute must depend on the pair alone, and
   /// first, second, begin, end may change only particle p's state. `results`
-  /// is scratch space (kept between calls). Exceptions from the callbacks
+  /// is scratch space (kept between calls). compute may also take the
+  /// pair's place in keys() as a third argument, compute(i, j, k) (per-pair
+  /// data such as a contact's history; each k is computed once). Exceptions from the callbacks
   /// reach the caller (the lowest thread's first).
   template <class R, class Compute, class Begin, class First, class Second, class End>
   void sum(std::vector<R>& results, Compute&& compute, Begin&& begin, First&& first, Second&& second, End&& end);
 
  private:
+  template <class Compute>
+  static decltype(auto) call(Compute& compute, std::uint32_t i, std::uint32_t j, std::size_t k) {
+    if constexpr (std::is_invocable_v<Compute&, std::uint32_t, std::uint32_t, std::size_t>) return compute(i, j, k);
+    else return compute(i, j);
+  }
+
   detail::PairKeys pk_;
   std::size_t n_;
   std::vector<std::uint64_t> keys_, tmp_;
@@ -193,9 +202,9 @@ void PairSum::sum(std::vector<R>& results, Compute&& compute, Begin&& begin, Fir
   const int T = static_cast<int>(range_p_.size()) - 1;
   if (T <= 1) {
     for (std::size_t p = 0; p < n_; ++p) begin(p);
-    for (const std::uint64_t key : keys_) {
-      const std::uint32_t i = pk_.first(key), j = pk_.second(key);
-      const R r = compute(i, j);
+    for (std::size_t k = 0; k < keys_.size(); ++k) {
+      const std::uint32_t i = pk_.first(keys_[k]), j = pk_.second(keys_[k]);
+      const R r = call(compute, i, j, k);
       first(r, i);
       second(r, j);
     }
@@ -225,7 +234,7 @@ void PairSum::sum(std::vector<R>& results, Compute&& compute, Begin&& begin, Fir
         for (int r = 0; r < T; ++r) notes[r].clear();
         for (std::size_t k = lo; k < hi; ++k) {
           const std::uint32_t i = pk_.first(keys_[k]), j = pk_.second(keys_[k]);
-          results[k] = compute(i, j);
+          results[k] = call(compute, i, j, k);
           const int oj = owner(j);
           if (oj != owner(i)) notes[oj].push_back(k);
         }

@@ -13,6 +13,18 @@ namespace hgrid::dpm {
 /// Luding's DEM notes recommend about 50 for accuracy, 10 is the stability floor.
 inline constexpr double kMinStepsPerContact = 10.0;
 
+/// The tangential force of a frictional contact, capped by Coulomb's mu f_n:
+/// viscous (gamma_t times the contact point's tangential velocity; no
+/// memory), or a spring (Cundall & Strack 1979, as in Luding, "Cohesive,
+/// frictional powders", Granular Matter 10 (2008), Sect. 2.2): the
+/// tangential displacement xi, kept per contact from step to step (rotated
+/// into the tangent plane, grown by v_t dt), f_t = k_t xi + gamma_t v_t; when
+/// |f_t| exceeds mu f_n the contact slides and xi is set back to the length
+/// the Coulomb force gives. Wall contacts stay viscous.
+enum class TangentialLaw { viscous, spring };
+
+inline const char* to_string(TangentialLaw t) { return t == TangentialLaw::viscous ? "viscous" : "spring"; }
+
 struct DpmConfig {
   int d = 2;
   Boundary boundary = Boundary::walls;
@@ -27,6 +39,10 @@ struct DpmConfig {
   bool friction = false;
   double mu = 0.5;                // Coulomb coefficient
   double friction_damping = 1.0;  // tangential viscosity gamma_t = friction_damping * m_red / t_c
+  TangentialLaw tangential = TangentialLaw::viscous;
+  /// k_t / k_n of the spring law. 2/7 (3D; 1/3 in 2D) gives the tangential
+  /// oscillation of a sticking contact the normal one's period.
+  double tangential_stiffness = 2.0 / 7.0;
   bool gravity = false;
   std::array<double, 3> g{};
   double density = 1.0;  // mass = density * volume (disk area in 2D)

@@ -42,6 +42,7 @@
 #include "hgridlab/dpm/contact_law.hpp"
 #include "hgridlab/dpm/simulation.hpp"
 #include "hgridlab/grid/hgrid.hpp"
+#include "hgridlab/contacts/contact_history.hpp"
 #include "hgridlab/contacts/contact_list.hpp"
 #include "hgridlab/contacts/pair_sum.hpp"
 
@@ -97,7 +98,8 @@ class Engine final : public Simulation {
     lb.side = box_;
     lb.periodic.fill(B == Boundary::periodic);
     list_.emplace(lb, ContactListParams{c.sizes, c.search, c.threads, c.skin, 0.0});
-    compute_forces();
+    compute_forces();  // the initial forces: no spring grows (spring_dt_ = 0)
+    spring_dt_ = c.dt;
   }
 
   void run(std::uint64_t steps) override {
@@ -238,7 +240,38 @@ class Engine final : public Simulation {
   };
   using PairForce = std::conditional_t<Friction, FullForce, NormalForce>;
 
-  PairForce pair_force(std::uint32_t i, std::uint32_t j) const {
+  /// Tangential spring force on i (the law of TangentialLaw::spring): xi,
+  /// the contact's displacement, is rotated into the tangent plane, grown by
+  /// vt dt and, if the force passes Coulomb's cap, set back to the cap.
+  Vec<D> tangential_spring(const Vec<D>& vrel, const Vec<D>& n, double m, double fn, Vec<D>& xi) const {
+    double vn = 0, xn = 0;
+    for (int k = 0; k < D; ++k) {
+      vn += vrel[k] * n[k];
+      xn += xi[k] * n[k];
+    }
+    const double kt = c_.tangential_stiffness * law_.k_per_mass * m;
+    const double gt = c_.friction_damping * m / c_.contact_time;
+    Vec<D> vt, ft;
+    double f2 = 0;
+    for (int k = 0; k < D; ++k) {
+      vt[k] = vrel[k] - vn * n[k];
+      xi[k] = xi[k] - xn * n[k] + spring_dt_ * vt[k];
+      ft[k] = kt * xi[k] + gt * vt[k];
+      f2 += ft[k] * ft[k];
+    }
+    const double cap = c_.mu * fn, f = std::sqrt(f2);
+    if (f > cap) {  // sliding: the force at the cap, the spring as long as that force allows
+      const double scale = f > 0 ? cap / f : 0.0;
+      for (int k = 0; k < D; ++k) {
+        ft[k] *= scale;
+        xi[k] = (ft[k] - gt * vt[k]) / kt;
+      }
+    }
+    return ft;
+  }
+
+  PairForce pair_force(std::uint32_t i, std::uint32_t j, std::size_t k_pair) const {
+    (void)k_pair;  // the contact's spring, with TangentialLaw::spring
     PairForce out;
     Vec<D> d;
     double d2 = 0;
@@ -266,7 +299,8 @@ class Engine final : public Simulation {
       for (std::size_t k = 0; k < ws.size(); ++k) ws[k] = s_[i].r * wi[k] + s_[j].r * wj[k];
       const Vec<D> rot = cross_wn<D>(ws, nrm);
       for (int k = 0; k < D; ++k) vrel[k] -= rot[k];
-      out.ft = tangential(vrel, nrm, m, std::max(fn, 0.0));  // on i
+      out.ft = spring_ ? tangential_spring(vrel, nrm, m, std::max(fn, 0.0), spring_[k_pair])
+                       : tangential(vrel, nrm, m, std::max(fn, 0.0));  // on i
       out.arm = cross_rn<D>(nrm, out.ft);
     }
     return out;
@@ -279,6 +313,11 @@ class Engine final : public Simulation {
       throw std::runtime_error("dpm: " + e.problem() + " at t = " + std::to_string(time_) +
                                " (time step too large for the velocities?)");
     }
+    if constexpr (Friction)
+      if (c_.tangential == TangentialLaw::spring) {  // the springs of the contacts that persist, carried
+        history_.update(*list_);
+        spring_ = history_.values().data();
+      }
     const ContactListStats& ls = list_->stats();
     stats_.list_builds = ls.builds;
     stats_.seconds_grid_build = ls.seconds_grid;
@@ -296,7 +335,7 @@ class Engine final : public Simulation {
     if constexpr (Friction) tqnew_.resize(n);
     std::atomic<std::uint64_t> wall_contacts{0};
     sum_.sum(
-        pair_forces_, [&](std::uint32_t i, std::uint32_t j) { return pair_force(i, j); },
+        pair_forces_, [&](std::uint32_t i, std::uint32_t j, std::size_t k) { return pair_force(i, j, k); },
         [&](std::size_t p) {
           if constexpr (Gravity)
             for (int k = 0; k < D; ++k) fnew[p][k] = m_[p] * c_.g[k];
@@ -379,6 +418,9 @@ class Engine final : public Simulation {
   std::vector<PairForce> pair_forces_;   // scratch of the threaded force pass
   int threads_ = 1;
   std::optional<ContactList<D>> list_;   // kept between steps
+  ContactHistory<Vec<D>> history_;       // the tangential springs (TangentialLaw::spring)
+  Vec<D>* spring_ = nullptr;             // history_'s values, one per contact of this step
+  double spring_dt_ = 0;                 // how long a spring grows per step (0 for the initial forces)
   std::vector<Vec<D>> fnew_;         // the forces being computed (swapped with f_)
   StepStats stats_;
   double time_ = 0;

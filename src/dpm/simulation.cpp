@@ -53,6 +53,8 @@ void validate(const DpmConfig& c) {
   if (!positive(c.density)) throw InputError("density", "must be finite and > 0");
   if (c.sizes.empty()) throw InputError("sizes", "at least one cell size is needed");
   if (!(std::isfinite(c.skin) && c.skin >= 0)) throw InputError("skin", "must be finite and >= 0");
+  if (c.friction && c.tangential == TangentialLaw::spring && !positive(c.tangential_stiffness))
+    throw InputError("tangential_stiffness", "must be finite and > 0");
 }
 
 std::unique_ptr<Simulation> make_simulation(const DpmConfig& c, const Packing& p, const std::vector<double>& v) {

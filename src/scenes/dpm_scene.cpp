@@ -224,6 +224,7 @@ std::string run_dpm_scene(const std::string& path, const std::string& scale, con
       {"threads", resolve_threads(sc.config.threads)},
       {"skin", sc.config.skin},
       {"friction", sc.config.friction},
+      {"tangential", sc.config.friction ? to_string(sc.config.tangential) : "none"},
       {"gravity", sc.config.gravity},
       {"K", sc.K},
       {"optimal", run_json(a)},

@@ -19,7 +19,7 @@ namespace {
 const detail::SceneSections kSections = {
     {"initial", {"d", "n", "nu", "alpha", "omega", "boundary", "placement", "seed", "speed", "velocity_seed"}},
     {"contact", {"contact_time", "restitution", "dt_over_tc", "density"}},
-    {"effects", {"friction", "mu", "friction_damping", "gravity"}},
+    {"effects", {"friction", "mu", "friction_damping", "tangential", "tangential_stiffness", "gravity"}},
     {"run", {"steps", "sample_every", "threads", "skin"}},
     {"grids", {"method", "K", "reference_size"}},
 };
@@ -89,6 +89,13 @@ DpmScene load_dpm_scene(const std::string& path, const std::string& scale) {
   c.friction = flag(ef, "effects", "friction", false);
   c.mu = number(ef, "effects", "mu", 0.5);
   c.friction_damping = number(ef, "effects", "friction_damping", 1.0);
+  const std::string tangential = text(ef, "effects", "tangential", "viscous");
+  if (tangential == "viscous") c.tangential = TangentialLaw::viscous;
+  else if (tangential == "spring") c.tangential = TangentialLaw::spring;
+  else throw InputError("effects.tangential", "must be 'viscous' or 'spring' (got '" + tangential + "')");
+  c.tangential_stiffness = number(ef, "effects", "tangential_stiffness", 2.0 / 7.0);
+  if (!(std::isfinite(c.tangential_stiffness) && c.tangential_stiffness > 0))
+    throw InputError("effects.tangential_stiffness", "must be finite and > 0");
   if (const auto* g = ef.get("gravity")) {
     const auto* a = g->as_array();
     if (!a || static_cast<int>(a->size()) != c.d) throw InputError("effects.gravity", "must be an array of d numbers");
