@@ -15,6 +15,8 @@
 #include "hgridlab/calibration/k_choice.hpp"
 #include "hgridlab/advice/recommend.hpp"
 #include "hgridlab/advice/recommend_json.hpp"
+#include "hgridlab/advice/skin_model.hpp"
+#include "hgridlab/model/distribution.hpp"
 #include "hgridlab/measure/fields.hpp"
 #include "hgridlab/measure/measurement.hpp"
 #include "hgridlab/measure/pairs.hpp"
@@ -170,17 +172,29 @@ py::dict read_particle_file(const std::string& path, std::optional<std::int64_t>
 class PyContactList {
  public:
   PyContactList(const DoubleArray& box, const std::vector<bool>& periodic, const std::optional<DoubleArray>& origin,
-                double skin, double skin_rel, const std::optional<std::vector<double>>& sizes,
-                const std::string& search, int threads) {
+                const py::object& skin, double skin_rel, const py::object& sizes, const std::string& search,
+                int threads) {
     const std::vector<double> b = to_vector(box, "box");
     d_ = static_cast<int>(b.size());
     if (d_ != 2 && d_ != 3) throw InputError("box", "must have 2 or 3 side lengths (the dimension)");
     ContactListParams p;
-    if (sizes) p.sizes = *sizes;
+    if (py::isinstance<py::str>(sizes)) {
+      if (sizes.cast<std::string>() != "auto") throw InputError("sizes", "must be a list of cell sizes, None or 'auto'");
+      auto_sizes_ = true;
+    } else if (!sizes.is_none()) {
+      p.sizes = sizes.cast<std::vector<double>>();
+    }
     p.search = parse_search(search);
     p.threads = check_threads(threads);
-    p.skin = skin;
+    if (py::isinstance<py::str>(skin)) {
+      if (skin.cast<std::string>() != "auto") throw InputError("skin", "must be a number >= 0 or 'auto'");
+      auto_skin_ = true;
+    } else {
+      p.skin = skin.cast<double>();
+    }
     p.skin_rel = skin_rel;
+    volume_ = 1;
+    for (double side : b) volume_ *= side;
     if (d_ == 2) list_.emplace<ContactList<2>>(list_box<2>(b, periodic, origin), p);
     else list_.emplace<ContactList<3>>(list_box<3>(b, periodic, origin), p);
   }
@@ -207,7 +221,13 @@ class PyContactList {
     bool rebuilt = false;
     {
       py::gil_scoped_release release;
-      std::visit([&](auto& l) { rebuilt = l.update(x, r); }, list_);
+      std::visit(
+          [&](auto& l) {
+            if (radii && (auto_sizes_ || auto_skin_)) first_choices(l, r);
+            rebuilt = l.update(x, r);
+            if (auto_skin_ && rebuilt) tune_skin(l, r);
+          },
+          list_);
     }
     if (radii) radii_ = r_arr;  // kept (a reference, no copy) once the update has passed
     return rebuilt;
@@ -271,6 +291,9 @@ class PyContactList {
           out["seconds_test"] = s.seconds_test;
           out["seconds_per_step"] = s.seconds_per_step();
           out["grid_sizes"] = l.grid_sizes();
+          out["skin"] = l.params().skin;
+          out["predicted_seconds_per_step"] = predicted_ ? py::cast(predicted_->seconds_per_step) : py::none();
+          out["predicted_steps_per_build"] = predicted_ ? py::cast(predicted_->steps_per_build) : py::none();
           return out;
         },
         list_);
@@ -303,7 +326,73 @@ class PyContactList {
     return o;
   }
 
+  /// The radii's packing fraction in the box.
+  double packing_fraction(std::span<const double> r) const {
+    double v = 0;
+    for (double x : r) v += ball_volume(d_, x);
+    return v / volume_;
+  }
+
+  /// sizes="auto": the cost model's sizes for these radii at their packing
+  /// fraction (K as `hgrid recommend`); skin="auto": a first skin of a
+  /// tenth of the mean diameter, tuned from the builds on.
+  template <class L>
+  void first_choices(L& l, std::span<const double> r) {
+    if (r.empty()) return;
+    const double nu = std::min(packing_fraction(r), 0.99);
+    if (auto_sizes_) {
+      const std::vector<double> radii(r.begin(), r.end());
+      l.set_sizes(recommend_cell_sizes(radii, ModelParams{d_, nu, choose_K("").K, Search::top_down}).sizes);
+    }
+    if (auto_skin_ && !tuned_once_) {
+      double mean = 0;
+      for (double x : r) mean += x;
+      mean /= static_cast<double>(r.size());
+      l.set_skin(0.2 * mean, l.params().skin_rel);
+      tuned_once_ = true;
+    }
+  }
+
+  /// skin="auto": every kTuneBuilds builds, the skin model (advice/skin_model.hpp)
+  /// from what the list measured over them picks the next skin.
+  template <class L>
+  void tune_skin(L& l, std::span<const double> r) {
+    const ContactListStats& s = l.stats();
+    if (s.builds < last_.builds + kTuneBuilds) return;
+    const double steps = double(s.steps - last_.steps), builds = double(s.builds - last_.builds);
+    const double n = double(r.size());
+    SkinMeasurement m;
+    m.skin = l.params().skin;
+    m.steps_per_build = steps / builds;
+    m.contacts_per_n = double(s.contacts) / n;
+    m.candidates_per_n = double(s.candidates_tested - last_.candidates_tested) / steps / n;
+    m.seconds_grid = (s.seconds_grid - last_.seconds_grid) / builds;
+    m.seconds_store = (s.seconds_build - last_.seconds_build - (s.seconds_grid - last_.seconds_grid)) / builds;
+    m.seconds_test = (s.seconds_test - last_.seconds_test) / steps;
+    m.seconds_check = (s.seconds_check - last_.seconds_check) / steps;
+    last_ = s;
+    if (!(m.skin > 0)) return;
+    // The model needs two skins: the first window's skin is doubled for the
+    // second; later, the last window at another skin than this one's.
+    if (!other_ || std::abs(other_->skin - m.skin) <= 1e-3 * m.skin) {
+      other_ = m;
+      l.set_skin(2 * m.skin, l.params().skin_rel);
+      return;
+    }
+    const Empirical radii(std::vector<double>(r.begin(), r.end()));
+    const double nu = std::min(packing_fraction(r), 0.95);
+    predicted_ = choose_skin(*other_, m, radii, d_, nu, 1e-3 * radii.r_min(), 4 * radii.r_max());
+    if (std::abs(predicted_->skin - m.skin) > 1e-3 * m.skin) other_ = m;
+    l.set_skin(predicted_->skin, l.params().skin_rel);
+  }
+  static constexpr std::uint64_t kTuneBuilds = 5;
+
   int d_ = 3;
+  double volume_ = 1;
+  bool auto_sizes_ = false, auto_skin_ = false, tuned_once_ = false;
+  ContactListStats last_;                      // the stats at the last tuning
+  std::optional<SkinPrediction> predicted_;    // the model's choice at the last tuning
+  std::optional<SkinMeasurement> other_;       // the last window measured at another skin
   std::variant<ContactList<2>, ContactList<3>> list_{std::in_place_type<ContactList<3>>, ListBox<3>{{1, 1, 1}, {}, {}},
                                                      ContactListParams{}};
   std::optional<DoubleArray> radii_;
@@ -352,13 +441,15 @@ PYBIND11_MODULE(hgridlab, m) {
                             "distance < r_i + r_j (minimum image on periodic axes), the same set as a fresh grid; "
                             "rebuilt with the HGrid only when a particle may have moved or grown through its skin, "
                             "or the box changed beyond it. box: the sides (its length is the dimension, 2 or 3); "
-                            "periodic: a flag per axis; origin: the lower corner (default 0); sizes: cell sizes for "
-                            "the radii (default: doubling from the smallest to the largest diameter); threads: 0 = "
-                            "all cores, the same pairs for any number.")
-      .def(py::init<const DoubleArray&, const std::vector<bool>&, const std::optional<DoubleArray>&, double, double,
-                    const std::optional<std::vector<double>>&, const std::string&, int>(),
+                            "periodic: a flag per axis; origin: the lower corner (default 0); skin: the pair skin, or "
+                            "'auto' (the skin model re-chooses it from what the list measures, every few builds); "
+                            "sizes: cell sizes for the radii, None (doubling from the smallest to the largest "
+                            "diameter) or 'auto' (the cost model's, as recommend); threads: 0 = all cores, the same "
+                            "pairs for any number.")
+      .def(py::init<const DoubleArray&, const std::vector<bool>&, const std::optional<DoubleArray>&, const py::object&,
+                    double, const py::object&, const std::string&, int>(),
            py::arg("box"), py::arg("periodic") = std::vector<bool>{true, true, true}, py::arg("origin") = py::none(),
-           py::arg("skin") = 0.0, py::arg("skin_rel") = 0.0, py::arg("sizes") = py::none(),
+           py::arg("skin") = py::float_(0.0), py::arg("skin_rel") = 0.0, py::arg("sizes") = py::none(),
            py::arg("search") = "bottomup", py::arg("threads") = 1)
       .def("update", &PyContactList::update, py::arg("positions"), py::arg("radii") = py::none(),
            "New positions (N x d) and radii (N; None: the last ones). Returns whether the candidates were rebuilt. "

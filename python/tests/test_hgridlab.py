@@ -264,3 +264,21 @@ def test_contact_list_rejects_bad_input_and_keeps_its_state():
     cl.update(positions * 0.99)
     assert set(map(tuple, cl.pairs().tolist())) == brute_pairs_per_axis(
         positions * 0.99, radii, box * 0.99, (True, True, False), np.zeros(3))
+
+
+def test_contact_list_auto_skin_and_sizes_stay_exact():
+    positions, radii, box = scene(n=2000, nu=0.3, d=3, seed=SEED + 5)
+    rng = np.random.default_rng(SEED)
+    velocity = rng.normal(0.0, 0.01, positions.shape)
+    cl = hgridlab.ContactList(box, periodic=(True, True, True), skin="auto", sizes="auto")
+    for step in range(120):
+        positions = positions + velocity
+        cl.update(positions, radii if step == 0 else None)
+        if step % 20 == 19:
+            assert set(map(tuple, cl.pairs().tolist())) == brute_pairs_per_axis(
+                positions, radii, box, (True, True, True), np.zeros(3))
+    s = cl.stats
+    assert s["predicted_seconds_per_step"] is not None and s["predicted_seconds_per_step"] > 0
+    assert s["skin"] > 0 and s["builds"] < 60
+    with pytest.raises(ValueError, match="skin"):
+        hgridlab.ContactList(box, skin="fast")

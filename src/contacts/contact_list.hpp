@@ -143,6 +143,20 @@ class ContactList {
   }
   const ListBox<D>& box() const { return box_; }
 
+  /// A new skin (a skin tuner's choice), and cell sizes (empty: the
+  /// default), used from the next build on; the list stays exact meanwhile
+  /// (its margins are those of the radii it was built with). Throws
+  /// InputError naming the field, and then changes nothing.
+  void set_skin(double skin, double skin_rel = 0) {
+    if (!(std::isfinite(skin) && skin >= 0))
+      throw InputError("skin", "must be finite and >= 0 (got " + format_number(skin) + ")");
+    if (!(std::isfinite(skin_rel) && skin_rel >= 0))
+      throw InputError("skin_rel", "must be finite and >= 0 (got " + format_number(skin_rel) + ")");
+    params_.skin = skin;
+    params_.skin_rel = skin_rel;
+  }
+  void set_sizes(std::vector<double> sizes) { params_.sizes = std::move(sizes); }
+
   /// New positions and radii (user coordinates), one sphere per particle in
   /// the same order as the contacts' indices. Returns whether the
   /// candidates were rebuilt. A different count than the last call rebuilds

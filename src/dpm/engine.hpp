@@ -320,6 +320,7 @@ class Engine final : public Simulation {
       }
     const ContactListStats& ls = list_->stats();
     stats_.list_builds = ls.builds;
+    stats_.list = ls;
     stats_.seconds_grid_build = ls.seconds_grid;
     stats_.seconds_query = ls.seconds() - ls.seconds_grid;  // the search, the skin check, the test
     stats_.seconds_contact_detection = ls.seconds();

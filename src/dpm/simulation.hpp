@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "hgridlab/contacts/contact_list.hpp"
 #include "hgridlab/dpm/config.hpp"
 #include "hgridlab/packing/packing.hpp"
 
@@ -21,6 +22,7 @@ struct StepStats {
   std::uint64_t friction_evaluations = 0;  // tangential forces computed
   std::uint64_t gravity_evaluations = 0;   // particles given gravity
   std::uint64_t list_builds = 0;           // contact list rebuilds (every step with skin 0)
+  ContactListStats list;                   // the contact list's own counts and seconds
   double seconds_contact_detection = 0;    // the contact list: builds + checks + tests
   double seconds_grid_build = 0;           //   of which: building the HGrid
   double seconds_query = 0;                //   of which: the rest (the search, storing the list, the skin

@@ -1,0 +1,68 @@
+// The skin of a contact list chosen by a cost model (beyond the paper;
+// docs/CONTACT_LIST.md, "The skin model").
+//
+// One step of a contact list with pair skin s costs
+//   t(s) = (t_grid + t_store(L)) / k(s) + t_test(L) + t_check,
+// a build (the grid of the inflated spheres, then the search and storing of
+// the candidates) every k(s) steps, and at every step the test of the L(s)
+// candidates and the check of the particles' margins. t_store and t_test
+// are affine in L (a part per particle, a part per candidate); their two
+// coefficients, t_grid, t_check and the steps per build come from what the
+// list measured as it ran at two skins s0 < s1. The model gives how the
+// terms change with s:
+// - L(s): the measured lengths L(s0), L(s1) joined by the shape of the
+//   shell: shell(s), the pairs per particle with r_i + r_j <= distance <
+//   r_i + r_j + s in a fluid at packing fraction nu,
+//   (nu / (2 <r^d>)) g_c (<(r_i + r_j + s)^d> - <(r_i + r_j)^d>), with the
+//   pair density at contact g_c of the hard-sphere fluid (Carnahan-Starling
+//   in 3D, Henderson in 2D) held over the shell;
+// - k(s) = k(s0) s / s0: between builds the particles move on straight
+//   lines (ballistic), and a build comes when the two largest displacements
+//   add up to the skin.
+#pragma once
+#include <vector>
+
+#include "hgridlab/model/distribution.hpp"
+
+namespace hgrid {
+
+/// The pair density at contact of the equal-size hard-sphere fluid at
+/// packing fraction nu: (1 - nu/2) / (1 - nu)^3 (3D, Carnahan-Starling),
+/// (1 - 7 nu / 16) / (1 - nu)^2 (2D, Henderson). InputError for d not 2 or 3,
+/// nu outside [0, 1).
+double contact_value(int d, double nu);
+
+/// Expected pairs per particle with r_i + r_j <= distance < r_i + r_j + skin
+/// (see above), for radii drawn from `radii`.
+double shell_pairs_per_particle(const Distribution& radii, int d, double nu, double skin);
+
+/// What a contact list measured over a window of steps at one skin.
+struct SkinMeasurement {
+  double skin = 0;               // s0 (> 0)
+  double steps_per_build = 0;    // k(s0) (>= 1)
+  double contacts_per_n = 0;     // contacts per particle
+  double candidates_per_n = 0;   // the list's length per particle at s0
+  double seconds_grid = 0;       // per build: the grid of the inflated spheres
+  double seconds_store = 0;      // per build: the candidate search and storing
+  double seconds_test = 0;       // per step: the test of the candidates
+  double seconds_check = 0;      // per step: reading positions, the margins
+};
+
+struct SkinPrediction {
+  double skin = 0;
+  double candidates_per_n = 0;
+  double steps_per_build = 0;
+  double seconds_per_step = 0;
+};
+
+/// The model's cost of skin s (> 0) from measurements at two skins
+/// a.skin != b.skin (InputError naming skin otherwise).
+SkinPrediction predict_skin(const SkinMeasurement& a, const SkinMeasurement& b, const Distribution& radii, int d,
+                            double nu, double skin);
+
+/// The skin in [lo, hi] (radii's unit) of least predicted seconds per step,
+/// from a log-spaced scan of `points` skins refined by golden sections.
+SkinPrediction choose_skin(const SkinMeasurement& a, const SkinMeasurement& b, const Distribution& radii, int d,
+                           double nu, double lo, double hi, int points = 40);
+
+}  // namespace hgrid

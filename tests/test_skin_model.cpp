@@ -1,0 +1,53 @@
+// The skin model (advice/skin_model.hpp): its closed forms, and that it
+// reproduces what it was given and picks the least of its own costs. Its
+// check against a scan of skins is bench/skin_scan (docs/CONTACT_LIST.md).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "hgridlab/advice/skin_model.hpp"
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/model/distribution.hpp"
+
+namespace hgrid::test {
+namespace {
+
+constexpr double kClosedFormTol = 1e-12;  // relative
+
+TEST(SkinModel, ContactValuesAreCarnahanStarlingAndHenderson) {
+  EXPECT_NEAR(contact_value(3, 0.3), (1 - 0.15) / (0.7 * 0.7 * 0.7), kClosedFormTol);
+  EXPECT_NEAR(contact_value(2, 0.4), (1 - 7 * 0.4 / 16) / (0.6 * 0.6), kClosedFormTol);
+  EXPECT_EQ(contact_value(3, 0.0), 1.0);
+  EXPECT_THROW(contact_value(3, 1.0), InputError);
+  EXPECT_THROW(contact_value(4, 0.1), InputError);
+}
+
+TEST(SkinModel, ShellOfEqualSpheresIsTheContactDensityTimesTheShellVolume) {
+  const Empirical ones(std::vector<double>(100, 1.0));
+  for (const int d : {2, 3})
+    for (const double s : {0.1, 0.5, 2.0}) {
+      const double nu = 0.3;
+      // rho = nu / V(1); pairs per particle = rho / 2 * g_c * (V(2 + s) - V(2))
+      const double shell = d == 3 ? std::pow(2 + s, 3) - 8 : std::pow(2 + s, 2) - 4;
+      EXPECT_NEAR(shell_pairs_per_particle(ones, d, nu, s), nu / 2 * contact_value(d, nu) * shell,
+                  kClosedFormTol * shell) << "d " << d << ", skin " << s;
+    }
+}
+
+TEST(SkinModel, ReproducesItsMeasurementsAndChoosesItsOwnMinimum) {
+  const PowerLaw radii(-3, 10);
+  SkinMeasurement a{0.2, 6.0, 0.1, 0.3, 2e-3, 1e-3, 4e-4, 1e-4};
+  SkinMeasurement b{0.4, 12.0, 0.1, 0.5, 2e-3, 1.4e-3, 5e-4, 1e-4};
+  EXPECT_NEAR(predict_skin(a, b, radii, 3, 0.4, 0.2).candidates_per_n, 0.3, kClosedFormTol);
+  EXPECT_NEAR(predict_skin(a, b, radii, 3, 0.4, 0.4).candidates_per_n, 0.5, kClosedFormTol);
+  EXPECT_NEAR(predict_skin(a, b, radii, 3, 0.4, 0.4).steps_per_build, 12.0, kClosedFormTol);
+  const SkinPrediction best = choose_skin(a, b, radii, 3, 0.4, 0.01, 5.0);
+  EXPECT_GE(best.skin, 0.01);
+  EXPECT_LE(best.skin, 5.0);
+  for (double s = 0.01; s <= 5.0; s *= 1.05)
+    EXPECT_LE(best.seconds_per_step, predict_skin(a, b, radii, 3, 0.4, s).seconds_per_step * (1 + 1e-9)) << s;
+  EXPECT_THROW(predict_skin(a, a, radii, 3, 0.4, 0.3), InputError);
+}
+
+}  // namespace
+}  // namespace hgrid::test
