@@ -76,6 +76,7 @@ struct Case {
   bool grow = false;      // the radii grow 0.1 % a step
   bool insert = false;    // 5 particles inserted every 10 steps
   std::uint64_t seed = 1;
+  bool far = false;       // periodic coordinates handed over in images up to 5 sides away
 };
 
 /// A trajectory of Brownian moves; the list's contacts against the brute
@@ -122,6 +123,11 @@ ContactListStats run_trajectory(const Case& c, std::size_t n = 400, int steps = 
           p.x[k] = x;
         }
         if (c.grow) p.r *= 1.001;
+        if (c.far)
+          for (int k = 0; k < D; ++k)
+            if (box.periodic[k])
+              p.x[k] = box.origin[k] + detail::wrap(p.x[k] - box.origin[k], box.side[k]) +
+                       box.side[k] * std::floor(11 * u01(rng) - 5);
       }
       if (c.insert && t % 10 == 0)
         for (int m = 0; m < 5; ++m) {
@@ -188,6 +194,22 @@ TEST(ContactList, CompressionGrowthAndInsertion) {
       run_trajectory<2>(Case{per, Search::top_down, threads, 0.3, 0.05, false, true, false, seed++});
       run_trajectory<3>(Case{per, Search::top_down, threads, 0.3, 0.05, false, false, true, seed++});
       run_trajectory<2>(Case{per, Search::bottom_up, threads, 0.2, 0.0, true, true, true, seed++});
+    }
+}
+
+// Images many sides away in a box that shrinks: a coordinate that stays put
+// while the side changes is a particle that moved (the displacements are
+// taken on the wrapped centres).
+TEST(ContactList, FarImagesInAChangingBox) {
+  std::uint64_t seed = 201;
+  for (const auto& per : {kPeriodic, kPour})
+    for (const int threads : {1, 2}) {
+      SCOPED_TRACE(testing::Message() << "periodic " << per[0] << per[1] << per[2] << ", threads " << threads);
+      Case c{per, Search::bottom_up, threads, 0.3, 0.0, true, false, false, seed++};
+      c.far = true;
+      run_trajectory<3>(c);
+      c.seed = seed++;
+      run_trajectory<2>(c);
     }
 }
 

@@ -307,11 +307,16 @@ class ContactList {
             }
           }
           next_[i] = local;
-          raw_[i] = q.x;
+          // The reference of the displacements: on a periodic axis the
+          // wrapped centre (images are then at most one side away, whose
+          // change the box term bounds; an unwrapped coordinate many sides
+          // out moves with every change of the side), on a walled one the
+          // user's coordinate (a moving wall moves no particle).
+          for (int k = 0; k < D; ++k) raw_[i][k] = box_.periodic[k] ? local.x[k] : q.x[k];
           if (same_count && !exact) {
             double u2 = 0;
             for (int k = 0; k < D; ++k) {
-              double u = q.x[k] - xref_[i][k];
+              double u = raw_[i][k] - xref_[i][k];
               if (box_.periodic[k]) u = detail::min_image(u, box_.side[k]);
               u2 += u * u;
             }
@@ -504,7 +509,7 @@ class ContactList {
   int threads_ = 1;
   bool built_ = false;
   std::vector<Sphere<D>> s_, next_;  // the spheres as tested (local, wrapped); the update being read
-  std::vector<Vec> xref_, raw_;      // user coordinates at the last build; of the update being read
+  std::vector<Vec> xref_, raw_;      // displacements' references at the last build (see update_from); of the update being read
   std::vector<double> rbig_;         // inflated radii at the last build
   double rbig_max_ = 0;
   Extent<D> side_built_{};
