@@ -172,7 +172,7 @@ py::dict read_particle_file(const std::string& path, std::optional<std::int64_t>
 class PyContactList {
  public:
   PyContactList(const DoubleArray& box, const std::vector<bool>& periodic, const std::optional<DoubleArray>& origin,
-                const py::object& skin, double skin_rel, const py::object& sizes, const std::string& search,
+                const Tilt& tilt, const py::object& skin, double skin_rel, const py::object& sizes, const std::string& search,
                 int threads) {
     const std::vector<double> b = to_vector(box, "box");
     d_ = static_cast<int>(b.size());
@@ -195,8 +195,8 @@ class PyContactList {
     p.skin_rel = skin_rel;
     volume_ = 1;
     for (double side : b) volume_ *= side;
-    if (d_ == 2) list_.emplace<ContactList<2>>(list_box<2>(b, periodic, origin), p);
-    else list_.emplace<ContactList<3>>(list_box<3>(b, periodic, origin), p);
+    if (d_ == 2) list_.emplace<ContactList<2>>(list_box<2>(b, periodic, origin, tilt, tilt.has_value()), p);
+    else list_.emplace<ContactList<3>>(list_box<3>(b, periodic, origin, tilt, tilt.has_value()), p);
   }
 
   /// New positions (N x d) and radii (N, or None: the last ones); returns
@@ -233,7 +233,7 @@ class PyContactList {
     return rebuilt;
   }
 
-  void set_box(const DoubleArray& box, const std::optional<DoubleArray>& origin) {
+  void set_box(const DoubleArray& box, const std::optional<DoubleArray>& origin, const Tilt& tilt) {
     const std::vector<double> b = to_vector(box, "box");
     if (static_cast<int>(b.size()) != d_) throw InputError("box", "must have " + std::to_string(d_) + " side lengths");
     std::visit(
@@ -241,7 +241,11 @@ class PyContactList {
           constexpr int D = std::decay_t<decltype(l)>::dimension;
           std::vector<bool> per(D);
           for (int k = 0; k < D; ++k) per[k] = l.box().periodic[k];
-          l.set_box(list_box<D>(b, per, origin ? origin : std::optional<DoubleArray>(origin_of(l.box()))));
+          const bool tri = l.box().triclinic;
+          if (tilt && !tri) throw InputError("tilt", "the list was made without tilt= (an orthogonal box)");
+          ListBox<D> nb = list_box<D>(b, per, origin ? origin : std::optional<DoubleArray>(origin_of(l.box())), tilt, tri);
+          if (tri && !tilt) nb.tilt = l.box().tilt;  // None keeps the tilts
+          l.set_box(nb);
         },
         list_);
   }
@@ -304,8 +308,14 @@ class PyContactList {
  private:
   template <int D>
   static ListBox<D> list_box(const std::vector<double>& b, const std::vector<bool>& periodic,
-                             const std::optional<DoubleArray>& origin) {
+                             const std::optional<DoubleArray>& origin, const Tilt& tilt, bool triclinic) {
     ListBox<D> lb;
+    lb.triclinic = triclinic;
+    if (tilt) {
+      if (tilt->size() != (D == 2 ? 1u : 3u))
+        throw InputError("tilt", D == 2 ? "must be [xy] in 2D" : "must be [xy, xz, yz] in 3D");
+      for (std::size_t k = 0; k < tilt->size(); ++k) lb.tilt[k] = (*tilt)[k];
+    }
     if (periodic.size() != static_cast<std::size_t>(D))
       throw InputError("periodic", "must have one flag per axis (" + std::to_string(D) + ")");
     for (int k = 0; k < D; ++k) {
@@ -441,14 +451,17 @@ PYBIND11_MODULE(hgridlab, m) {
                             "distance < r_i + r_j (minimum image on periodic axes), the same set as a fresh grid; "
                             "rebuilt with the HGrid only when a particle may have moved or grown through its skin, "
                             "or the box changed beyond it. box: the sides (its length is the dimension, 2 or 3); "
-                            "periodic: a flag per axis; origin: the lower corner (default 0); skin: the pair skin, or "
+                            "periodic: a flag per axis; origin: the lower corner (default 0); tilt: a triclinic box's "
+                            "[xy] (2D) or [xy, xz, yz] (3D), LAMMPS's (every axis periodic; its tilts may then "
+                            "change at every set_box); skin: the pair skin, or "
                             "'auto' (the skin model re-chooses it from what the list measures, every few builds); "
                             "sizes: cell sizes for the radii, None (doubling from the smallest to the largest "
                             "diameter) or 'auto' (the cost model's, as recommend); threads: 0 = all cores, the same "
                             "pairs for any number.")
-      .def(py::init<const DoubleArray&, const std::vector<bool>&, const std::optional<DoubleArray>&, const py::object&,
-                    double, const py::object&, const std::string&, int>(),
+      .def(py::init<const DoubleArray&, const std::vector<bool>&, const std::optional<DoubleArray>&, const Tilt&,
+                    const py::object&, double, const py::object&, const std::string&, int>(),
            py::arg("box"), py::arg("periodic") = std::vector<bool>{true, true, true}, py::arg("origin") = py::none(),
+           py::arg("tilt") = py::none(),
            py::arg("skin") = py::float_(0.0), py::arg("skin_rel") = 0.0, py::arg("sizes") = py::none(),
            py::arg("search") = "bottomup", py::arg("threads") = 1)
       .def("update", &PyContactList::update, py::arg("positions"), py::arg("radii") = py::none(),
@@ -460,7 +473,9 @@ PYBIND11_MODULE(hgridlab, m) {
            "The contacts as compressed rows (start, partners): the partners j > i of particle i are "
            "partners[start[i]:start[i + 1]], ascending.")
       .def("set_box", &PyContactList::set_box, py::arg("box"), py::arg("origin") = py::none(),
-           "A new box (sides, and origin: None keeps it); the axes' boundaries stay.")
+           py::arg("tilt") = py::none(),
+           "A new box (sides; origin and tilt: None keeps them); the axes' boundaries stay. A growing "
+           "Lees-Edwards offset is a new tilt [xy] at every step (the offset less a multiple of lx).")
       .def_property_readonly("stats", &PyContactList::stats,
                              "steps, builds, candidates, contacts, seconds (check, build, test, per step), grid_sizes.")
       .def_property_readonly("d", &PyContactList::d);

@@ -364,3 +364,84 @@ TEST(ContactHistory, CarriesValuesByIdsThroughReorderingInsertionAndRemoval) {
 
 }  // namespace
 }  // namespace hgrid::test
+
+namespace hgrid::test {
+namespace {
+
+/// A Lees-Edwards box whose offset grows every step (the tilt flipping by
+/// lx at LAMMPS's limit), and a triclinic box whose three tilts drift: at
+/// every step the contacts equal the tilted brute force (3^d images around
+/// the rounding) and a fresh TiltedHGrid's, bit for bit.
+template <int D>
+void check_sheared(std::uint64_t seed, bool lees_edwards, int threads) {
+  Scene<D> sc = random_scene<D>(500, 0.3, -2.0, 3.0, Boundary::periodic, seed);
+  ListBox<D> box;
+  box.side = sc.box;
+  box.periodic.fill(true);
+  box.triclinic = true;
+  for (int k = 0; k < D; ++k) box.origin[k] = 2.5 * (k + 1);
+  std::vector<Sphere<D>> user = sc.spheres;
+  for (auto& p : user)
+    for (int k = 0; k < D; ++k) p.x[k] += box.origin[k];
+  ContactList<D> list(box, ContactListParams{{}, Search::bottom_up, threads, 0.4, 0.0});
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  double offset = lees_edwards ? 0.47 * box.side[0] : 0.0;
+  box.tilt = TiltedBox<D>::lees_edwards(box.side, offset).tilt;
+  list.set_box(box);
+  for (int t = 0; t < 80; ++t) {
+    if (t > 0) {
+      for (auto& p : user)
+        for (int k = 0; k < D; ++k) p.x[k] += 0.03 * u(rng);
+      if (lees_edwards) {
+        offset += 0.002 * box.side[0];  // from 0.47 lx: past lx/2 after 15 steps, where the tilt flips
+        box.tilt = TiltedBox<D>::lees_edwards(box.side, offset).tilt;
+      } else {
+        for (int k = 0; k < (D == 2 ? 1 : 3); ++k)
+          box.tilt[k] = std::clamp(box.tilt[k] + 0.01 * box.side[0] * u(rng), -0.3 * box.side[0], 0.3 * box.side[0]);
+      }
+      list.set_box(box);
+    }
+    list.update(user);
+    std::vector<Sphere<D>> local = user;
+    for (auto& p : local)
+      for (int k = 0; k < D; ++k) p.x[k] -= box.origin[k];
+    TiltedBox<D> tb{box.side, box.tilt};
+    if constexpr (D == 2) tb.tilt[1] = tb.tilt[2] = 0;
+    std::vector<Pair> want;
+    brute_force_pairs_tilted<D>(local, tb, [&](std::uint32_t i, std::uint32_t j) { want.emplace_back(i, j); });
+    double rmin = local[0].r, rmax = rmin;
+    for (const auto& p : local) rmin = std::min(rmin, p.r), rmax = std::max(rmax, p.r);
+    const TiltedHGrid<D> fresh(local, tb, GridParams{doubling_sizes(rmin, rmax), Search::top_down, 1});
+    std::vector<Pair> grid;
+    fresh.for_each_pair([&](std::uint32_t i, std::uint32_t j) { grid.emplace_back(i, j); });
+    std::sort(grid.begin(), grid.end());
+    const auto got = list_pairs(list);
+    if (got != want || got != grid) {
+      ADD_FAILURE() << "D = " << D << ", step " << t << ", seed " << seed << ", tilt xy " << tb.tilt[0] << ": "
+                    << got.size() << " contacts, brute force " << want.size() << ", fresh grid " << grid.size();
+      return;
+    }
+    if (!got.empty()) {  // the image shift makes the displacement
+      const auto [i, j] = got[got.size() / 3];
+      const auto d = list.displacement(i, j);
+      double d2 = 0;
+      for (int k = 0; k < D; ++k) d2 += d[k] * d[k];
+      EXPECT_LT(d2, (local[i].r + local[j].r) * (local[i].r + local[j].r));
+    }
+  }
+  EXPECT_LT(list.stats().builds, list.stats().steps);
+}
+
+TEST(ContactList, LeesEdwardsAndDriftingTiltsEveryStep) {
+  for (const int threads : {1, 2}) {
+    SCOPED_TRACE("threads " + std::to_string(threads));
+    check_sheared<2>(301, true, threads);
+    check_sheared<3>(302, true, threads);
+    check_sheared<3>(303, false, threads);
+    check_sheared<2>(304, false, threads);
+  }
+}
+
+}  // namespace
+}  // namespace hgrid::test

@@ -282,3 +282,26 @@ def test_contact_list_auto_skin_and_sizes_stay_exact():
     assert s["skin"] > 0 and s["builds"] < 60
     with pytest.raises(ValueError, match="skin"):
         hgridlab.ContactList(box, skin="fast")
+
+
+def test_contact_list_lees_edwards_offset_grows_every_step():
+    positions, radii, box = scene(n=500, nu=0.3, d=2, seed=SEED + 9)
+    rng = np.random.default_rng(SEED)
+    lx, ly = box
+    offset = 0.49 * lx
+    cl = hgridlab.ContactList(box, periodic=(True, True), tilt=[offset], skin=0.4)
+    for step in range(40):
+        if step:
+            offset += 0.0005 * lx
+            positions = positions + rng.uniform(-0.01, 0.01, positions.shape)
+        xy = offset - lx * np.round(offset / lx)  # the Lees-Edwards tilt, |xy| <= lx / 2
+        cl.set_box(box, tilt=[xy])
+        cl.update(positions, radii)
+        h = np.array([[lx, xy], [0.0, ly]])
+        d = positions[None, :, :] - positions[:, None, :]
+        f = d @ np.linalg.inv(h).T
+        d = (f - np.round(f)) @ h.T
+        reach = (radii[:, None] + radii[None, :]) ** 2
+        i, j = np.nonzero(np.triu(np.sum(d**2, axis=-1) < reach, k=1))
+        assert set(map(tuple, cl.pairs().tolist())) == set(zip(i.tolist(), j.tolist()))
+    assert cl.stats["builds"] < 40

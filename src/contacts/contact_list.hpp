@@ -47,6 +47,8 @@
 #include "hgridlab/grid/geometry.hpp"
 #include "hgridlab/grid/hgrid.hpp"
 #include "hgridlab/grid/params.hpp"
+#include "hgridlab/grid/tilted.hpp"
+#include "hgridlab/grid/tilted_box.hpp"
 #include "hgridlab/grid/uninit_vector.hpp"
 
 namespace hgrid {
@@ -59,6 +61,12 @@ struct ListBox {
   Extent<D> side{};
   std::array<double, D> origin{};
   std::array<bool, D> periodic{};
+  /// A triclinic box (every axis periodic): LAMMPS's lattice, edge vectors
+  /// (lx, 0, 0), (xy, ly, 0), (xz, yz, lz) (grid/tilted_box.hpp); a
+  /// Lees-Edwards box is its xy, the offset less a multiple of lx. Its tilts
+  /// may change at every set_box (a growing shear); fixed at construction.
+  bool triclinic = false;
+  std::array<double, 3> tilt{};  // xy, xz, yz (2D: xy); used when triclinic
 };
 
 /// Cell sizes doubling from the smallest diameter 2 rmin up to the largest
@@ -139,6 +147,8 @@ class ContactList {
       if (box.periodic[k] != box_.periodic[k])
         throw InputError("box", "axis " + std::to_string(k + 1) + " must stay " +
                                     (box_.periodic[k] ? "periodic" : "walled"));
+    if (box.triclinic != box_.triclinic)
+      throw InputError("box", box_.triclinic ? "must stay triclinic" : "cannot become triclinic (make the list with triclinic = true)");
     box_ = box;
   }
   const ListBox<D>& box() const { return box_; }
@@ -201,6 +211,10 @@ class ContactList {
   /// displacement from i to j (0 or +-side on each periodic axis); what the
   /// relative velocity across a moving periodic boundary needs.
   Vec image_shift(std::uint32_t i, std::uint32_t j) const {
+    if (box_.triclinic) {
+      const TiltedBox<D> tb = tilted_box(box_);
+      return tb.cartesian(detail::nearest_shift<D>(tb, s_[i].x, s_[j].x));
+    }
     Vec out{};
     for (int k = 0; k < D; ++k)
       if (box_.periodic[k]) {
@@ -212,6 +226,11 @@ class ContactList {
   /// The minimum-image displacement x_j - x_i, as the test computes it.
   Vec displacement(std::uint32_t i, std::uint32_t j) const {
     Vec d;
+    if (box_.triclinic) {
+      const Vec sh = image_shift(i, j);
+      for (int k = 0; k < D; ++k) d[k] = s_[j].x[k] - s_[i].x[k] + sh[k];
+      return d;
+    }
     for (int k = 0; k < D; ++k) {
       d[k] = s_[j].x[k] - s_[i].x[k];
       if (box_.periodic[k]) d[k] = detail::min_image(d[k], box_.side[k]);
@@ -240,6 +259,16 @@ class ContactList {
       if (!std::isfinite(box.origin[k]))
         throw InputError("origin", "coordinate " + std::to_string(k + 1) + " must be finite");
     }
+    if (box.triclinic) {
+      for (int k = 0; k < D; ++k)
+        if (!box.periodic[k]) throw InputError("periodic", "a triclinic box is periodic on every axis");
+      tilted_box(box).check(0.0);  // finite tilts within LAMMPS's limit
+    }
+  }
+  static TiltedBox<D> tilted_box(const ListBox<D>& b) {
+    TiltedBox<D> t{b.side, b.tilt};
+    if constexpr (D == 2) t.tilt[1] = t.tilt[2] = 0;
+    return t;
   }
 
   double inflated(double r) const { return r * (1 + params_.skin_rel) + 0.5 * params_.skin; }
@@ -279,6 +308,7 @@ class ContactList {
     const std::size_t B = blocks_for(n);
     block_min_.assign(2 * B, std::numeric_limits<double>::infinity());
     block_error_.assign(B, nullptr);
+    const TiltedBox<D> tb = tilted_box(box_);
     detail::parallel_for(static_cast<int>(B), B, [&](std::size_t b, int) {
       const std::size_t i0 = n * b / B, i1 = n * (b + 1) / B;
       double m1 = std::numeric_limits<double>::infinity(), m2 = m1;
@@ -295,7 +325,9 @@ class ContactList {
               throw InputError("position", "particle " + std::to_string(i) + " has a non-finite coordinate on axis " +
                                                std::to_string(k + 1));
             const double x = q.x[k] - box_.origin[k];
-            if (box_.periodic[k]) {
+            if (box_.triclinic) {
+              local.x[k] = x;  // the tilted grid's test takes the centres as they are
+            } else if (box_.periodic[k]) {
               local.x[k] = detail::wrap(x, box_.side[k]);
             } else {
               if (x < 0 || x > box_.side[k])
@@ -312,13 +344,27 @@ class ContactList {
           // change the box term bounds; an unwrapped coordinate many sides
           // out moves with every change of the side), on a walled one the
           // user's coordinate (a moving wall moves no particle).
-          for (int k = 0; k < D; ++k) raw_[i][k] = box_.periodic[k] ? local.x[k] : q.x[k];
+          if (box_.triclinic) {
+            std::array<double, D> f = tb.fractional(local.x);
+            for (auto& v : f) v -= std::floor(v);
+            raw_[i] = tb.cartesian(f);  // the centre wrapped into the lattice's cell
+          } else {
+            for (int k = 0; k < D; ++k) raw_[i][k] = box_.periodic[k] ? local.x[k] : q.x[k];
+          }
           if (same_count && !exact) {
             double u2 = 0;
-            for (int k = 0; k < D; ++k) {
-              double u = raw_[i][k] - xref_[i][k];
-              if (box_.periodic[k]) u = detail::min_image(u, box_.side[k]);
-              u2 += u * u;
+            if (box_.triclinic) {  // the nearest lattice image of the displacement
+              const Vec sh = tb.cartesian(detail::nearest_shift<D>(tb, xref_[i], raw_[i]));
+              for (int k = 0; k < D; ++k) {
+                const double u = raw_[i][k] - xref_[i][k] + sh[k];
+                u2 += u * u;
+              }
+            } else {
+              for (int k = 0; k < D; ++k) {
+                double u = raw_[i][k] - xref_[i][k];
+                if (box_.periodic[k]) u = detail::min_image(u, box_.side[k]);
+                u2 += u * u;
+              }
             }
             const double m = rbig_[i] - q.r - std::sqrt(u2);
             if (m < m1) {
@@ -348,12 +394,25 @@ class ContactList {
           m2 = m;
         }
       }
-      double shift2 = 0, scale = 0;  // how far the periodic sides' changes move an image
-      for (int k = 0; k < D; ++k) {
-        scale = std::max(scale, box_.side[k] + std::abs(box_.origin[k]));
-        if (box_.periodic[k]) shift2 += (box_.side[k] - side_built_[k]) * (box_.side[k] - side_built_[k]);
+      double shift = 0, scale = 0;  // how far the periodic sides' (and tilts') changes move an image
+      for (int k = 0; k < D; ++k) scale = std::max(scale, box_.side[k] + std::abs(box_.origin[k]));
+      if (box_.triclinic) {  // the lattice's columns' changes, each image at most one column away per axis
+        const TiltedBox<D> now = tilted_box(box_), then{side_built_, tilt_built_};
+        for (int k = 0; k < D; ++k) {
+          std::array<double, D> e{};
+          e[k] = 1;
+          const Vec a = now.cartesian(e), b = then.cartesian(e);
+          double c2 = 0;
+          for (int q = 0; q < D; ++q) c2 += (a[q] - b[q]) * (a[q] - b[q]);
+          shift += std::sqrt(c2);
+        }
+      } else {
+        double shift2 = 0;
+        for (int k = 0; k < D; ++k)
+          if (box_.periodic[k]) shift2 += (box_.side[k] - side_built_[k]) * (box_.side[k] - side_built_[k]);
+        shift = std::sqrt(shift2);
       }
-      rebuild = n > 1 && m1 + m2 <= std::sqrt(shift2) + kRoundingSlack * (scale + 2 * rbig_max_);
+      rebuild = n > 1 && m1 + m2 <= shift + kRoundingSlack * (scale + 2 * rbig_max_);
     }
     stats_.seconds_check += seconds_since(t0);
     if (rebuild) {
@@ -369,6 +428,8 @@ class ContactList {
       start_.assign(cstart_.begin(), cstart_.end());
       nbr_.resize(cand_.size());
       std::copy(cand_.begin(), cand_.end(), nbr_.begin());
+    } else if (box_.triclinic) {
+      test_tilted();
     } else {
       switch (mask_) {
         case 0: test<0>(); break;
@@ -441,8 +502,23 @@ class ContactList {
             [&](int t, std::uint32_t i, std::uint32_t j) { keys_[static_cast<std::size_t>(t)].push_back(ps.key(i, j)); });
     };
     if (n > 0) {
-      if (mask_ == 0) search(gw_);
-      else search(gp_);
+      if (box_.triclinic) {
+        // The tilted grid (grid/tilted.hpp): made anew at each build, as its
+        // tilts change (it refuses a box narrower than twice the largest
+        // inflated diameter: InputError naming the box, the list unchanged).
+        const auto t0 = Clock::now();
+        gt_.emplace(gspan, tilted_box(box_), gp);
+        stats_.seconds_grid += seconds_since(t0);
+        if (T <= 1)
+          gt_->template for_each_pair<PairsOnly>([&](std::uint32_t i, std::uint32_t j) { keys_[0].push_back(ps.key(i, j)); });
+        else
+          gt_->template for_each_pair<PairsOnly>(
+              [&](int t, std::uint32_t i, std::uint32_t j) { keys_[static_cast<std::size_t>(t)].push_back(ps.key(i, j)); });
+      } else if (mask_ == 0) {
+        search(gw_);
+      } else {
+        search(gp_);
+      }
     }
     // Canonical order, then compressed rows.
     ps.gather(keys_);
@@ -457,16 +533,46 @@ class ContactList {
       rbig_max_ = std::max(rbig_max_, gs_[i].r);
     }
     for (int k = 0; k < D; ++k) side_built_[k] = box_.side[k];
+    tilt_built_ = tilted_box(box_).tilt;
     built_ = true;
+  }
+
+  /// The per-step test in a triclinic box, with the tilted grid's own test
+  /// (grid/tilted.hpp): the lattice image nearest in fractional terms, or,
+  /// at zero tilt, the orthogonal grid's on the wrapped centres.
+  void test_tilted() {
+    const TiltedBox<D> tb = tilted_box(box_);
+    if (!tb.tilted()) {
+      wrapped_.resize(s_.size());
+      for (std::size_t i = 0; i < s_.size(); ++i) {
+        wrapped_[i].r = s_[i].r;
+        for (int k = 0; k < D; ++k) wrapped_[i].x[k] = detail::wrap(s_[i].x[k], box_.side[k]);
+      }
+      test_with([&](std::uint32_t i, std::uint32_t j) {
+        return touching<(1u << D) - 1>(wrapped_[i], wrapped_[j]);
+      });
+      return;
+    }
+    test_with([&](std::uint32_t i, std::uint32_t j) {
+      const auto sh = detail::nearest_shift<D>(tb, s_[i].x, s_[j].x);
+      const double rs = s_[i].r + s_[j].r;
+      return detail::tilted_dist2<D>(tb, s_[i].x, s_[j].x, sh) < rs * rs;
+    });
   }
 
   /// The per-step test of every candidate: contacts into start_ / nbr_.
   template <unsigned Mask>
   void test() {
+    const Sphere<D>* const s = s_.data();
+    test_with([s, this](std::uint32_t i, std::uint32_t j) { return touching<Mask>(s[i], s[j]); });
+  }
+
+  /// The per-step test with touching(i, j): contacts into start_ / nbr_.
+  template <class Touching>
+  void test_with(Touching&& touching_pair) {
     const std::size_t n = s_.size();
     start_.resize(n + 1);
     nbr_.resize(cand_.size());  // at most every candidate; cut to the contacts below
-    const Sphere<D>* const s = s_.data();
     const std::uint32_t* const cs = cstart_.data();
     const std::uint32_t* const cand = cand_.data();
     std::uint32_t* const out = nbr_.data();
@@ -480,11 +586,11 @@ class ContactList {
       std::uint32_t w = cs[i0];
       for (std::size_t i = i0; i < i1; ++i) {
         st[i] = w;
-        const Sphere<D> p = s[i];
+        const auto ii = static_cast<std::uint32_t>(i);
         for (std::uint32_t m = cs[i]; m < cs[i + 1]; ++m) {
           const std::uint32_t j = cand[m];
           out[w] = j;
-          w += touching<Mask>(p, s[j]);
+          w += touching_pair(ii, j);
         }
       }
       block_count_[b] = w - cs[i0];
@@ -514,10 +620,13 @@ class ContactList {
   double rbig_max_ = 0;
   Extent<D> side_built_{};
   std::vector<Sphere<D>> gs_;        // the inflated spheres of a build
+  std::vector<Sphere<D>> wrapped_;   // a triclinic box at zero tilt: the wrapped centres
   std::vector<double> default_sizes_;
   GridParams grid_params_;
   std::optional<HGrid<D, Boundary::walls>> gw_;     // every axis walled
   std::optional<HGrid<D, Boundary::periodic>> gp_;  // any axis periodic (walled ones padded)
+  std::optional<TiltedHGrid<D>> gt_;                // a triclinic box
+  std::array<double, 3> tilt_built_{};
   std::optional<PairSum> sum_;
   std::size_t pair_n_ = 0;
   std::vector<std::vector<std::uint64_t>> keys_;  // per thread of a build's search
