@@ -88,16 +88,18 @@ void BM_RebuildEveryStep(benchmark::State& st) {
   st.counters["contacts_per_n"] = double(contacts) / double(st.iterations()) / double(m.s.size());
   st.SetItemsProcessed(st.iterations() * st.range(0));
 }
-BENCHMARK(BM_RebuildEveryStep)->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RebuildEveryStep)->Arg(10000)->Arg(100000)->Iterations(200)->Unit(benchmark::kMillisecond);
 
 // range(0): N; range(1): the pair skin in thousandths of r_min. The list is
-// made and filled before the timing (its first build).
+// made and filled before the timing (its first build). A fixed number of
+// steps, so that every run (and every binary) times the same states.
 void BM_ContactListStep(benchmark::State& st) {
   Moving m = make_moving(static_cast<std::size_t>(st.range(0)));
   ContactList<3> list(ListBox<3>{m.box, {}, {true, true, true}},
                       ContactListParams{optimal_sizes(), Search::top_down, 1, double(st.range(1)) / 1000, 0.0});
   list.update(m.s);
   const std::uint64_t builds0 = list.stats().builds;
+  const ContactListStats s0 = list.stats();
   std::uint64_t contacts = 0, candidates = 0;
   for (auto _ : st) {
     st.PauseTiming();
@@ -111,10 +113,15 @@ void BM_ContactListStep(benchmark::State& st) {
   st.counters["contacts_per_n"] = double(contacts) / it / n;
   st.counters["candidates_per_n"] = double(candidates) / it / n;
   st.counters["steps_per_build"] = it / std::max(1.0, double(list.stats().builds - builds0));
+  const ContactListStats& s1 = list.stats();  // where a step's time goes, ms per step
+  st.counters["check_ms"] = 1e3 * (s1.seconds_check - s0.seconds_check) / it;
+  st.counters["build_ms"] = 1e3 * (s1.seconds_build - s0.seconds_build) / it;
+  st.counters["test_ms"] = 1e3 * (s1.seconds_test - s0.seconds_test) / it;
   st.SetItemsProcessed(st.iterations() * st.range(0));
 }
 BENCHMARK(BM_ContactListStep)
     ->ArgsProduct({{10000, 100000}, {0, 50, 100, 200, 400, 800}})
+    ->Iterations(200)
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -5,6 +5,7 @@ parameters, tolerances named constants."""
 import json
 import os
 import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -305,3 +306,10 @@ def test_contact_list_lees_edwards_offset_grows_every_step():
         i, j = np.nonzero(np.triu(np.sum(d**2, axis=-1) < reach, k=1))
         assert set(map(tuple, cl.pairs().tolist())) == set(zip(i.tolist(), j.tolist()))
     assert cl.stats["builds"] < 40
+
+
+def test_the_contact_list_example_runs():
+    here = os.path.dirname(os.path.abspath(__file__))
+    script = os.path.join(here, "..", "..", "examples", "contact_list_steps.py")
+    out = subprocess.run([sys.executable, script], check=True, capture_output=True, text=True, env=os.environ.copy())
+    assert "list builds" in out.stdout

@@ -36,6 +36,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -276,11 +277,11 @@ class ContactList {
   /// The test of the grid (grid/geometry.hpp), per axis: periodic axes (bits
   /// of Mask) take the minimum image.
   template <unsigned Mask>
-  bool touching(const Sphere<D>& p, const Sphere<D>& q) const {
+  static bool touching(const Sphere<D>& p, const Sphere<D>& q, const Extent<D>& side) {
     double s = 0.0;
     for (int k = 0; k < D; ++k) {
       double dx = q.x[k] - p.x[k];
-      if (Mask & (1u << k)) dx = detail::min_image(dx, box_.side[k]);
+      if (Mask & (1u << k)) dx = detail::min_image(dx, side[k]);
       s += dx * dx;
     }
     const double rs = p.r + q.r;
@@ -309,78 +310,88 @@ class ContactList {
     block_min_.assign(2 * B, std::numeric_limits<double>::infinity());
     block_error_.assign(B, nullptr);
     const TiltedBox<D> tb = tilted_box(box_);
-    detail::parallel_for(static_cast<int>(B), B, [&](std::size_t b, int) {
-      const std::size_t i0 = n * b / B, i1 = n * (b + 1) / B;
-      double m1 = std::numeric_limits<double>::infinity(), m2 = m1;
-      try {
-        for (std::size_t i = i0; i < i1; ++i) {
-          const Sphere<D> q = get(i);
-          if (!(std::isfinite(q.r) && q.r > 0))
-            throw InputError("radius", "particle " + std::to_string(i) + " has radius " + format_number(q.r) +
-                                           " (must be finite and > 0)");
-          Sphere<D> local;
-          local.r = q.r;
-          for (int k = 0; k < D; ++k) {
-            if (!std::isfinite(q.x[k]))
-              throw InputError("position", "particle " + std::to_string(i) + " has a non-finite coordinate on axis " +
-                                               std::to_string(k + 1));
-            const double x = q.x[k] - box_.origin[k];
-            if (box_.triclinic) {
-              local.x[k] = x;  // the tilted grid's test takes the centres as they are
-            } else if (box_.periodic[k]) {
-              local.x[k] = detail::wrap(x, box_.side[k]);
-            } else {
-              if (x < 0 || x > box_.side[k])
-                throw InputError("position", "particle " + std::to_string(i) + " left the walled axis " +
-                                                 std::to_string(k + 1) + ": its centre " + format_number(q.x[k]) +
-                                                 " is outside [" + format_number(box_.origin[k]) + ", " +
-                                                 format_number(box_.origin[k] + box_.side[k]) + "]");
-              local.x[k] = x;
-            }
-          }
-          next_[i] = local;
-          // The reference of the displacements: on a periodic axis the
-          // wrapped centre (images are then at most one side away, whose
-          // change the box term bounds; an unwrapped coordinate many sides
-          // out moves with every change of the side), on a walled one the
-          // user's coordinate (a moving wall moves no particle).
-          if (box_.triclinic) {
-            std::array<double, D> f = tb.fractional(local.x);
-            for (auto& v : f) v -= std::floor(v);
-            raw_[i] = tb.cartesian(f);  // the centre wrapped into the lattice's cell
-          } else {
-            for (int k = 0; k < D; ++k) raw_[i][k] = box_.periodic[k] ? local.x[k] : q.x[k];
-          }
-          if (same_count && !exact) {
-            double u2 = 0;
-            if (box_.triclinic) {  // the nearest lattice image of the displacement
-              const Vec sh = tb.cartesian(detail::nearest_shift<D>(tb, xref_[i], raw_[i]));
-              for (int k = 0; k < D; ++k) {
-                const double u = raw_[i][k] - xref_[i][k] + sh[k];
-                u2 += u * u;
-              }
-            } else {
-              for (int k = 0; k < D; ++k) {
-                double u = raw_[i][k] - xref_[i][k];
-                if (box_.periodic[k]) u = detail::min_image(u, box_.side[k]);
-                u2 += u * u;
+    const ListBox<D> bx = box_;  // in a local: the loop's stores could alias a member, reloaded every particle
+    const double* const rbig = rbig_.data();
+    const Vec* const xref = xref_.data();
+    Sphere<D>* const next = next_.data();
+    Vec* const raw = raw_.data();
+    // The loop compiled twice, for a triclinic box and for the others.
+    const auto read = [&](auto triclinic) {
+      detail::parallel_for(static_cast<int>(B), B, [&](std::size_t b, int) {
+        const std::size_t i0 = n * b / B, i1 = n * (b + 1) / B;
+        double m1 = std::numeric_limits<double>::infinity(), m2 = m1;
+        try {
+          for (std::size_t i = i0; i < i1; ++i) {
+            const Sphere<D> q = get(i);
+            if (!(std::isfinite(q.r) && q.r > 0))
+              throw InputError("radius", "particle " + std::to_string(i) + " has radius " + format_number(q.r) +
+                                             " (must be finite and > 0)");
+            Sphere<D> local;
+            local.r = q.r;
+            for (int k = 0; k < D; ++k) {
+              if (!std::isfinite(q.x[k]))
+                throw InputError("position", "particle " + std::to_string(i) + " has a non-finite coordinate on axis " +
+                                                 std::to_string(k + 1));
+              const double x = q.x[k] - bx.origin[k];
+              if constexpr (decltype(triclinic)::value) {
+                local.x[k] = x;  // the tilted grid's test takes the centres as they are
+              } else if (bx.periodic[k]) {
+                local.x[k] = detail::wrap(x, bx.side[k]);
+              } else {
+                if (x < 0 || x > bx.side[k])
+                  throw InputError("position", "particle " + std::to_string(i) + " left the walled axis " +
+                                                   std::to_string(k + 1) + ": its centre " + format_number(q.x[k]) +
+                                                   " is outside [" + format_number(bx.origin[k]) + ", " +
+                                                   format_number(bx.origin[k] + bx.side[k]) + "]");
+                local.x[k] = x;
               }
             }
-            const double m = rbig_[i] - q.r - std::sqrt(u2);
-            if (m < m1) {
-              m2 = m1;
-              m1 = m;
-            } else if (m < m2) {
-              m2 = m;
+            next[i] = local;
+            // The reference of the displacements: on a periodic axis the
+            // wrapped centre (images are then at most one side away, whose
+            // change the box term bounds; an unwrapped coordinate many sides
+            // out moves with every change of the side), on a walled one the
+            // user's coordinate (a moving wall moves no particle).
+            if constexpr (decltype(triclinic)::value) {
+              std::array<double, D> f = tb.fractional(local.x);
+              for (auto& v : f) v -= std::floor(v);
+              raw[i] = tb.cartesian(f);  // the centre wrapped into the lattice's cell
+            } else {
+              for (int k = 0; k < D; ++k) raw[i][k] = bx.periodic[k] ? local.x[k] : q.x[k];
+            }
+            if (same_count && !exact) {
+              double u2 = 0;
+              if constexpr (decltype(triclinic)::value) {  // the nearest lattice image of the displacement
+                const Vec sh = tb.cartesian(detail::nearest_shift<D>(tb, xref[i], raw[i]));
+                for (int k = 0; k < D; ++k) {
+                  const double u = raw[i][k] - xref[i][k] + sh[k];
+                  u2 += u * u;
+                }
+              } else {
+                for (int k = 0; k < D; ++k) {
+                  double u = raw[i][k] - xref[i][k];
+                  if (bx.periodic[k]) u = detail::min_image(u, bx.side[k]);
+                  u2 += u * u;
+                }
+              }
+              const double m = rbig[i] - q.r - std::sqrt(u2);
+              if (m < m1) {
+                m2 = m1;
+                m1 = m;
+              } else if (m < m2) {
+                m2 = m;
+              }
             }
           }
+        } catch (...) {
+          block_error_[b] = std::current_exception();
         }
-      } catch (...) {
-        block_error_[b] = std::current_exception();
-      }
-      block_min_[2 * b] = m1;
-      block_min_[2 * b + 1] = m2;
-    });
+        block_min_[2 * b] = m1;
+        block_min_[2 * b + 1] = m2;
+      });
+    };
+    if (bx.triclinic) read(std::true_type{});
+    else read(std::false_type{});
     for (const auto& e : block_error_)
       if (e) std::rethrow_exception(e);  // blocks in index order: the lowest particle's error
     bool rebuild = !same_count || exact;
@@ -548,28 +559,34 @@ class ContactList {
         wrapped_[i].r = s_[i].r;
         for (int k = 0; k < D; ++k) wrapped_[i].x[k] = detail::wrap(s_[i].x[k], box_.side[k]);
       }
-      test_with([&](std::uint32_t i, std::uint32_t j) {
-        return touching<(1u << D) - 1>(wrapped_[i], wrapped_[j]);
-      });
+      test_with([w = wrapped_.data()](std::uint32_t i) { return w[i]; },
+                [w = wrapped_.data(), side = box_.side](const Sphere<D>& p, std::uint32_t j) {
+                  return touching<(1u << D) - 1>(p, w[j], side);
+                });
       return;
     }
-    test_with([&](std::uint32_t i, std::uint32_t j) {
-      const auto sh = detail::nearest_shift<D>(tb, s_[i].x, s_[j].x);
-      const double rs = s_[i].r + s_[j].r;
-      return detail::tilted_dist2<D>(tb, s_[i].x, s_[j].x, sh) < rs * rs;
-    });
+    test_with([s = s_.data()](std::uint32_t i) { return s[i]; },
+              [&tb, s = s_.data()](const Sphere<D>& p, std::uint32_t j) {
+                const auto sh = detail::nearest_shift<D>(tb, p.x, s[j].x);
+                const double rs = p.r + s[j].r;
+                return detail::tilted_dist2<D>(tb, p.x, s[j].x, sh) < rs * rs;
+              });
   }
 
   /// The per-step test of every candidate: contacts into start_ / nbr_.
   template <unsigned Mask>
   void test() {
-    const Sphere<D>* const s = s_.data();
-    test_with([s, this](std::uint32_t i, std::uint32_t j) { return touching<Mask>(s[i], s[j]); });
+    test_with([s = s_.data()](std::uint32_t i) { return s[i]; },
+              [s = s_.data(), side = box_.side](const Sphere<D>& p, std::uint32_t j) {
+                return touching<Mask>(p, s[j], side);
+              });
   }
 
-  /// The per-step test with touching(i, j): contacts into start_ / nbr_.
-  template <class Touching>
-  void test_with(Touching&& touching_pair) {
+  /// The per-step test: row(i) once per particle (its sphere, kept in
+  /// registers over its row), hit(row(i), j) per candidate; contacts into
+  /// start_ / nbr_.
+  template <class Row, class Hit>
+  void test_with(Row&& row, Hit&& hit) {
     const std::size_t n = s_.size();
     start_.resize(n + 1);
     nbr_.resize(cand_.size());  // at most every candidate; cut to the contacts below
@@ -586,11 +603,11 @@ class ContactList {
       std::uint32_t w = cs[i0];
       for (std::size_t i = i0; i < i1; ++i) {
         st[i] = w;
-        const auto ii = static_cast<std::uint32_t>(i);
+        const Sphere<D> p = row(static_cast<std::uint32_t>(i));
         for (std::uint32_t m = cs[i]; m < cs[i + 1]; ++m) {
           const std::uint32_t j = cand[m];
           out[w] = j;
-          w += touching_pair(ii, j);
+          w += hit(p, j);
         }
       }
       block_count_[b] = w - cs[i0];
