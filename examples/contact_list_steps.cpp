@@ -28,6 +28,7 @@ int main() {
     for (int k = 0; k < 3; ++k) s[i].x[k] = (site[k] + 0.5) * side / per_axis, v[i][k] = g(rng);
   }
 
+  // [readme]
   // Candidates within r_i + r_j + 0.5, rebuilt only when a particle may have crossed that skin.
   ContactList<3> list(box, ContactListParams{.sizes = {}, .search = Search::bottom_up, .threads = 1, .skin = 0.5});
   const auto forces = [&] {
@@ -40,6 +41,7 @@ int main() {
       for (int k = 0; k < 3; ++k) f[i][k] -= push * d[k], f[j][k] += push * d[k];
     });
   };
+  // [/readme]
 
   forces();
   for (int step = 0; step < 1000; ++step) {

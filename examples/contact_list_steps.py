@@ -16,7 +16,8 @@ site = np.stack(np.unravel_index(np.arange(n), (per_axis,) * 3), axis=1)
 x = (site + 0.5) * side / per_axis
 v = rng.normal(0.0, 0.5, (n, 3))
 
-cl = hgridlab.ContactList(box, periodic=(True, True, False), skin=0.5)
+# [readme]
+cl = hgridlab.ContactList(box, periodic=(True, True, False), skin=0.5)  # or skin="auto"
 
 
 def forces(x):
@@ -30,6 +31,7 @@ def forces(x):
     np.add.at(f, i, -push)
     np.add.at(f, j, push)
     return f
+# [/readme]
 
 
 f = forces(x)
