@@ -4,7 +4,7 @@
 # model of results/calibration.json, N = 10^6), costed in the paper's T.
 load 'plots/lib/style.gp'
 set logscale xy
-set format y '10^{%L}'
+set format xy '10^{%L}'
 set xlabel 'time to compute sizes and L^* [s]'
 set ylabel '(T - T_{opt}) / T_{opt}   (optimal: plotted at 10^{-12})'
 set title 'What accuracy costs in time (d = 3, {/Symbol n} = 0.7, K = 0.2)'
