@@ -36,7 +36,7 @@ class CMakeBuild(build_ext):
             "-DHGRID_BUILD_CLI=OFF", "-DHGRID_INSTALL=OFF", "-DHGRID_MPI=OFF",
             # A one-shot build: sources compiled in batches (the same code and
             # flags, so the same module; 113 s against 156 s on 2 cores,
-            # docs/PERFORMANCE.md). `make` keeps the library one file per
+            # docs/record/PERFORMANCE.md). `make` keeps the library one file per
             # unit, which catches a source that leans on another's includes.
             "-DCMAKE_UNITY_BUILD=ON",
         ]

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Parallel efficiency of the decomposed count (docs/PERFORMANCE.md, MPI):
+# Parallel efficiency of the decomposed count (docs/record/PERFORMANCE.md, MPI):
 # the serial count (1 thread) and `mpirun -np P ... --decompose` (1 thread
 # per rank) alternated R times on one packing, with the sizes `hgrid
 # recommend` gives for it. Prints each run's seconds, then per round and for

@@ -131,7 +131,7 @@ json run_lammps_tools(const Options& o, const Packing& p, const std::string& lmp
   // One run per class set; then the two fastest sets run again, as hgridlab
   // is sampled again between the runs: LAMMPS multi's time for the same set
   // varies by up to a third between runs on an otherwise quiet machine
-  // (docs/PERFORMANCE.md, run 12), and a single run would let that fall on
+  // (docs/record/PERFORMANCE.md, run 12), and a single run would let that fall on
   // LAMMPS alone.
   auto attempt = [&](const std::vector<double>& collections, json& row) {
     s.collections = collections;

@@ -172,7 +172,7 @@ TEST_F(ParticleFiles, LammpsDumpFilesFirstSnapshotAnyColumns) {
   EXPECT_THROW(to_packing(m, "m.dump"), InputError);
 }
 
-// MercuryDPM's .data files (docs/MERCURYDPM_FILES.md): snapshots one after
+// MercuryDPM's .data files (docs/record/MERCURYDPM_FILES.md): snapshots one after
 // another, the first often empty; the last unless --frame says; 3D and 2D
 // lines; the domain is the box, origin at its lower corner; no boundary.
 TEST_F(ParticleFiles, MercuryDpmDataFilesAnySnapshot) {

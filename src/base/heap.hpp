@@ -20,7 +20,7 @@ inline constexpr int kHeapBlockMax = 32 << 20;
 /// next allocation of the same size touches fresh pages, and each first touch
 /// is a page fault in which the kernel zeroes the page. A program that builds
 /// a grid of 10^5 spheres every other Monte Carlo sweep faults millions of
-/// times (measured in docs/PERFORMANCE.md, round 34). After this call blocks
+/// times (measured in docs/record/PERFORMANCE.md, round 34). After this call blocks
 /// up to kHeapBlockMax come from the heaps and the heaps are not trimmed, so
 /// the process keeps its peak footprint until it exits. A no-op without
 /// glibc. Call it once, at the start of a program, before its threads start.

@@ -62,7 +62,7 @@ struct WallBox {
 /// density continuation; past them the model refuses (InputError naming nu).
 inline constexpr int kMaxDiscIterations = 1000;
 /// Multiply-adds of the 2D numerical solution per second on one core of the
-/// reference machine (AMD EPYC Zen 5 VM, docs/PERFORMANCE.md: 2.54e8 per
+/// reference machine (AMD EPYC Zen 5 VM, docs/record/PERFORMANCE.md: 2.54e8 per
 /// iteration at omega = 50 took 37.8 s for 1000 iterations): the default
 /// budget of `hgrid count` and Python's count (about a second), and the
 /// seconds its refusals state.

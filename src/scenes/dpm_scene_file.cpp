@@ -120,7 +120,7 @@ DpmScene load_dpm_scene(const std::string& path, const std::string& scale) {
 
   // The pair skin of the scene's contact-list run (in units of r_min = 1;
   // 0: rebuilt every step); the trajectory is the same for any skin. 1.0:
-  // the faster of 0.5 and 1.0 on the free-cooling scene (docs/PERFORMANCE.md).
+  // the faster of 0.5 and 1.0 on the free-cooling scene (docs/record/PERFORMANCE.md).
   s.config.skin = number(rn, "run", "skin", 1.0);
   if (!(std::isfinite(s.config.skin) && s.config.skin >= 0)) throw InputError("run.skin", "must be finite and >= 0");
 

@@ -1,5 +1,5 @@
 // MercuryDPM's .data files (the XBalls format its DPMBase writes; notes and
-// citations in docs/MERCURYDPM_FILES.md): snapshots one after another, each
+// citations in docs/record/MERCURYDPM_FILES.md): snapshots one after another, each
 // a header "N t xmin ymin xmax ymax" (2D) or "N t xmin ymin zmin xmax ymax
 // zmax" (3D) and N particle lines "x y vx vy r angle omega info" (8 values)
 // or "x y z vx vy vz r a1 a2 a3 wx wy wz info" (14 values).

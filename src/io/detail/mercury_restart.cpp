@@ -1,4 +1,4 @@
-// MercuryDPM's .restart file (docs/MERCURYDPM_FILES.md section 3, read from
+// MercuryDPM's .restart file (docs/record/MERCURYDPM_FILES.md section 3, read from
 // its writers: DPMBase::write, Kernel/DPMBase.cc; ParticleHandler::write and
 // BaseParticle::write; BaseWall::write and InfiniteWall; PeriodicBoundary::write,
 // LeesEdwardsBoundary::write and ShearBoxBoundary::write in Kernel/Boundaries).

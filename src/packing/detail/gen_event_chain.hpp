@@ -37,7 +37,7 @@ inline constexpr double kChainLength = 20.0;
 /// How far ahead one event looks, in smallest radii.
 inline constexpr double kEventReach = 1.0;
 /// Events of a free flight decided by one scan of the grid (a scan that
-/// long costs about two of one event; docs/PERFORMANCE.md round 25).
+/// long costs about two of one event; docs/record/PERFORMANCE.md round 25).
 inline constexpr double kFlightEvents = 8.0;
 /// The scans reach this much further (relative), against rounding in the
 /// positions of the events they serve.

@@ -43,10 +43,10 @@ namespace hgrid::detail {
 
 /// A node's half skin h_a, relative to its radius: a trial moves a sphere by
 /// at most kMcStep r per axis, so budgets in proportion to the radius cover
-/// as large a share of every sphere's trials (docs/PERFORMANCE.md round 39).
+/// as large a share of every sphere's trials (docs/record/PERFORMANCE.md round 39).
 inline constexpr double kListHalfSkin = 0.75;
 /// The listed levels: those whose spheres are at most this many smallest
-/// radii (docs/PERFORMANCE.md round 39).
+/// radii (docs/record/PERFORMANCE.md round 39).
 inline constexpr double kListMaxRadius = 8.0;
 /// Relative margins of the budget test and the lists' reach (see above).
 inline constexpr double kListMargin = 1e-6;

@@ -15,7 +15,7 @@ namespace hgrid::detail {
 /// steps after a 2 % growth step as after a 0.5 % one (its relaxation time,
 /// not the size of the push, sets the count), so four times fewer growth
 /// steps take ~2.4x fewer FIRE steps (N = 10^5, nu = 0.6, alpha = -3, omega =
-/// 10, walls: 2674 against 9024; docs/PERFORMANCE.md round 25). Equilibrated
+/// 10, walls: 2674 against 9024; docs/record/PERFORMANCE.md round 25). Equilibrated
 /// afterwards, the packings' T/N is unchanged within the seeds' spread.
 inline constexpr double kGrowthStep = 1.02;
 /// Largest relative overlap overlap / (r_i + r_j) accepted after each growth
@@ -36,7 +36,7 @@ inline constexpr std::uint64_t kFireStepsTotal = 400000;
 /// omega = 10, one thread: the compression 21.0/22.2 -> 10.0/10.1 s (walls,
 /// alpha = 0), 15.5/16.7 -> 10.3/11.4 s (walls, alpha = -3), 10.4/10.1 ->
 /// 8.5/8.3 s and 11.0/10.5 -> 9.2/9.3 s (periodic, alpha = 0 and -3);
-/// docs/PERFORMANCE.md round 38.
+/// docs/record/PERFORMANCE.md round 38.
 inline constexpr double kFireMassFloor = 0.1;
 /// Verlet skin of the neighbour list, relative to each radius.
 inline constexpr double kSkin = 0.25;
