@@ -343,14 +343,15 @@ class PyContactList {
     return v / volume_;
   }
 
-  /// sizes="auto": the cost model's sizes for these radii at their packing
-  /// fraction (K as `hgrid recommend`); skin="auto": a first skin of a
-  /// tenth of the mean diameter, tuned from the builds on.
+  /// sizes="auto": the cost model's sizes for the first radii at their
+  /// packing fraction (K as `hgrid recommend`); skin="auto": a first skin of
+  /// a tenth of the mean diameter, tuned from the builds on.
   template <class L>
   void first_choices(L& l, std::span<const double> r) {
     if (r.empty()) return;
     const double nu = std::min(packing_fraction(r), 0.99);
-    if (auto_sizes_) {
+    if (auto_sizes_ && !sized_once_) {  // once: new sizes would mean a new grid
+      sized_once_ = true;
       const std::vector<double> radii(r.begin(), r.end());
       l.set_sizes(recommend_cell_sizes(radii, ModelParams{d_, nu, choose_K("").K, Search::top_down}).sizes);
     }
@@ -399,7 +400,7 @@ class PyContactList {
 
   int d_ = 3;
   double volume_ = 1;
-  bool auto_sizes_ = false, auto_skin_ = false, tuned_once_ = false;
+  bool auto_sizes_ = false, auto_skin_ = false, tuned_once_ = false, sized_once_ = false;
   ContactListStats last_;                      // the stats at the last tuning
   std::optional<SkinPrediction> predicted_;    // the model's choice at the last tuning
   std::optional<SkinMeasurement> other_;       // the last window measured at another skin
