@@ -288,6 +288,16 @@ class ContactList {
     return s < rs * rs;
   }
 
+  /// Keeps m1 <= m2 the two smallest values seen, given one more.
+  static void two_smallest(double m, double& m1, double& m2) {
+    if (m < m1) {
+      m2 = m1;
+      m1 = m;
+    } else if (m < m2) {
+      m2 = m;
+    }
+  }
+
   /// Blocks of rows (one per thread, at most one per kMinRowsPerThread).
   std::size_t blocks_for(std::size_t n) const {
     return std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(threads_), n / kMinRowsPerThread));
@@ -374,13 +384,7 @@ class ContactList {
                   u2 += u * u;
                 }
               }
-              const double m = rbig[i] - q.r - std::sqrt(u2);
-              if (m < m1) {
-                m2 = m1;
-                m1 = m;
-              } else if (m < m2) {
-                m2 = m;
-              }
+              two_smallest(rbig[i] - q.r - std::sqrt(u2), m1, m2);
             }
           }
         } catch (...) {
@@ -397,14 +401,7 @@ class ContactList {
     bool rebuild = !same_count || exact;
     if (!rebuild) {
       double m1 = std::numeric_limits<double>::infinity(), m2 = m1;
-      for (const double m : block_min_) {
-        if (m < m1) {
-          m2 = m1;
-          m1 = m;
-        } else if (m < m2) {
-          m2 = m;
-        }
-      }
+      for (const double m : block_min_) two_smallest(m, m1, m2);
       double shift = 0, scale = 0;  // how far the periodic sides' (and tilts') changes move an image
       for (int k = 0; k < D; ++k) scale = std::max(scale, box_.side[k] + std::abs(box_.origin[k]));
       if (box_.triclinic) {  // the lattice's columns' changes, each image at most one column away per axis
@@ -501,16 +498,19 @@ class ContactList {
     }
     PairSum& ps = *sum_;
     const std::span<const Sphere<D>> gspan(gs_.data(), gs_.size());
+    const auto collect = [&](const auto& grid) {  // the grid's pairs as keys, one list per thread
+      if (T <= 1)
+        grid.template for_each_pair<PairsOnly>([&](std::uint32_t i, std::uint32_t j) { keys_[0].push_back(ps.key(i, j)); });
+      else
+        grid.template for_each_pair<PairsOnly>(
+            [&](int t, std::uint32_t i, std::uint32_t j) { keys_[static_cast<std::size_t>(t)].push_back(ps.key(i, j)); });
+    };
     const auto search = [&](auto& grid) {
       const auto t0 = Clock::now();
       if (!grid || grid->params().sizes != gp.sizes) grid.emplace(gspan, gbox, gp);  // a new grid: new sizes
       else grid->rebuild(gspan, gbox);
       stats_.seconds_grid += seconds_since(t0);
-      if (T <= 1)
-        grid->template for_each_pair<PairsOnly>([&](std::uint32_t i, std::uint32_t j) { keys_[0].push_back(ps.key(i, j)); });
-      else
-        grid->template for_each_pair<PairsOnly>(
-            [&](int t, std::uint32_t i, std::uint32_t j) { keys_[static_cast<std::size_t>(t)].push_back(ps.key(i, j)); });
+      collect(*grid);
     };
     if (n > 0) {
       if (box_.triclinic) {
@@ -520,11 +520,7 @@ class ContactList {
         const auto t0 = Clock::now();
         gt_.emplace(gspan, tilted_box(box_), gp);
         stats_.seconds_grid += seconds_since(t0);
-        if (T <= 1)
-          gt_->template for_each_pair<PairsOnly>([&](std::uint32_t i, std::uint32_t j) { keys_[0].push_back(ps.key(i, j)); });
-        else
-          gt_->template for_each_pair<PairsOnly>(
-              [&](int t, std::uint32_t i, std::uint32_t j) { keys_[static_cast<std::size_t>(t)].push_back(ps.key(i, j)); });
+        collect(*gt_);
       } else if (mask_ == 0) {
         search(gw_);
       } else {

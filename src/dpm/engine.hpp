@@ -90,9 +90,6 @@ class Engine final : public Simulation {
       for (std::size_t i = 0; i < n; ++i)
         inv_I_[i] = 1.0 / ((D == 2 ? 0.5 : 0.4) * m_[i] * s_[i].r * s_[i].r);
     }
-    grid_params_.sizes = c.sizes;
-    grid_params_.search = c.search;
-    grid_params_.threads = c.threads;
     threads_ = resolve_threads(c.threads);
     ListBox<D> lb;
     lb.side = box_;
@@ -409,7 +406,6 @@ class Engine final : public Simulation {
   DpmConfig c_;
   SpringDashpot law_;
   Extent<D> box_{};
-  GridParams grid_params_;
   std::vector<Sphere<D>> s_;
   std::vector<Vec<D>> v_, f_;
   std::vector<double> m_;
