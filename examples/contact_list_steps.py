@@ -21,8 +21,9 @@ cl = hgridlab.ContactList(box, periodic=(True, True, False), skin=0.5)  # or ski
 
 
 def forces(x):
-    cl.update(x, radii)
-    i, j = cl.pairs().T.astype(np.intp)
+    cl.update(x, radii)                   # rebuilds only when a particle may have crossed its skin
+    i, j = cl.pairs().T.astype(np.intp)   # every touching pair, i < j, ascending
+# [/readme]
     d = x[j] - x[i]
     d[:, :2] -= side * np.round(d[:, :2] / side)  # minimum image on the periodic axes
     dist = np.linalg.norm(d, axis=1)
@@ -31,7 +32,6 @@ def forces(x):
     np.add.at(f, i, -push)
     np.add.at(f, j, push)
     return f
-# [/readme]
 
 
 f = forces(x)
