@@ -73,19 +73,46 @@ GridParams grid_params(const Packing& p, const std::optional<std::vector<double>
   return GridParams{recommend_cell_sizes(p.radii, ModelParams{p.d, p.packing_fraction(), choose_K("").K, s}).sizes, s};
 }
 
-py::dict recommend(const DoubleArray& radii, double nu, int d, const std::optional<py::object>& K,
-                   const std::string& search, const std::string& cost) {
+py::dict recommend(const DoubleArray& radii, std::optional<double> nu, int d, const std::optional<py::object>& K,
+                   const std::string& search, const std::string& cost, const std::optional<DoubleArray>& positions,
+                   const std::optional<DoubleArray>& box, const std::optional<py::object>& periodic) {
   std::string k_text;
   if (K && !K->is_none()) k_text = py::isinstance<py::str>(*K) ? K->cast<std::string>() : format_number(K->cast<double>());
   const KChoice k = choose_K(k_text);
   const Search s = parse_search(search);
   const std::vector<double> r_list = to_vector(radii, "radii");
+  if (positions.has_value() != box.has_value())
+    throw InputError(positions ? "box" : "positions", "positions and box go together (the density field needs both)");
+  if (!positions && !nu) throw InputError("nu", "give nu (a homogeneous packing), or positions and box (its density field)");
   const std::optional<TimeModelUse> time = choose_time_model(cost, k, d, static_cast<double>(r_list.size()));
-  Recommendation r = recommend_cell_sizes(r_list, ModelParams{d, nu, k.K, s}, time);
-  add_lammps_collections(r, r_list, d, nu);
+  Recommendation r;
+  if (positions && !nu) {
+    const std::vector<double> x = to_vector(*positions, "positions"), b = to_vector(*box, "box");
+    if (b.size() != static_cast<std::size_t>(d)) throw InputError("box", "must hold d = " + std::to_string(d) + " side lengths");
+    FieldBox fb{d, {}, {true, true, true}};
+    for (int a = 0; a < d; ++a) fb.side[a] = b[a];
+    if (periodic && !periodic->is_none()) {
+      if (py::isinstance<py::bool_>(*periodic)) fb.periodic.fill(periodic->cast<bool>());
+      else {
+        const auto per = periodic->cast<std::vector<bool>>();
+        if (per.size() != static_cast<std::size_t>(d)) throw InputError("periodic", "must be a bool or d bools");
+        for (int a = 0; a < d; ++a) fb.periodic[a] = per[a];
+      }
+    }
+    std::optional<DensityField> field;
+    {
+      py::gil_scoped_release release;
+      field.emplace(x, r_list, fb);
+      r = recommend_for_field(*field, ModelParams{d, std::min(1.0, field->box_nu()), k.K, s}, time);
+    }
+  } else {
+    r = recommend_cell_sizes(r_list, ModelParams{d, *nu, k.K, s}, time);
+  }
+  const double nu_used = r.field ? r.field->nu_effective : *nu;
+  add_lammps_collections(r, r_list, d, nu_used);
   py::dict out = py::module_::import("json").attr("loads")(recommendation_json(r, k, s, 0.0));
   out["d"] = d;
-  out["nu"] = nu;
+  out["nu"] = nu_used;
   return out;
 }
 
@@ -415,8 +442,9 @@ PYBIND11_MODULE(hgridlab, m) {
   m.doc() = "hgridlab: hierarchical-grid (HGrid) contact detection and its cost model "
             "(Krijgsman, Ogarko & Luding, Comp. Part. Mech. 1 (2014))";
   py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
-  m.def("recommend", &recommend, py::arg("radii"), py::arg("nu"), py::arg("d") = 3, py::arg("K") = py::none(),
-        py::arg("search") = "topdown", py::arg("cost") = "auto",
+  m.def("recommend", &recommend, py::arg("radii"), py::arg("nu") = py::none(), py::arg("d") = 3, py::arg("K") = py::none(),
+        py::arg("search") = "topdown", py::arg("cost") = "auto", py::arg("positions") = py::none(),
+        py::arg("box") = py::none(), py::arg("periodic") = py::none(),
         "Optimal cell sizes for these radii (any unit) at packing fraction nu: a dict with the keys of "
         "`hgrid recommend --json` that do not describe a file (levels, sizes in the radii's unit, T_over_N, speedup "
         "over the linked cell, K and K_source, lammps and mercurydpm lines, ...) plus d and nu. K: a number, 'auto', "

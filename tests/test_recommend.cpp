@@ -84,7 +84,9 @@ TEST_F(Recommend, SameRadiiInEveryFormatAndUnitGiveTheSameSizes) {
   std::ofstream(path("pow2.txt")) << pow2;
   std::ofstream(path("p.dump")) << dump;
   std::ofstream(path("data.lmp")) << lammps_data(p);
-  const nlohmann::json ref = recommend_json(path("p.h5"));
+  // The box's nu (--homogeneous): files with positions otherwise take the
+  // density field, checked below and in tests/test_density_field.cpp.
+  const nlohmann::json ref = recommend_json(path("p.h5") + " --homogeneous");
   ASSERT_FALSE(ref.is_null());
   EXPECT_GE(ref["levels"].get<int>(), 2);
   EXPECT_EQ(ref["nu_source"], "box");
@@ -92,9 +94,14 @@ TEST_F(Recommend, SameRadiiInEveryFormatAndUnitGiveTheSameSizes) {
   EXPECT_EQ(ref["K"].get<double>(), 0.2);
   const std::string nu = format_number(ref["nu"].get<double>());
   for (const std::string& f : {std::string("p.csv"), std::string("p.dump"), std::string("data.lmp")})
-    expect_same_sizes(recommend_json(path(f)), ref, 1.0, f);
+    expect_same_sizes(recommend_json(path(f) + " --homogeneous"), ref, 1.0, f);
+  // The field: the same positions in every format give the same sizes.
+  const nlohmann::json field = recommend_json(path("p.h5"));
+  EXPECT_EQ(field["nu_source"], "field");
+  for (const std::string& f : {std::string("p.csv"), std::string("p.dump"), std::string("data.lmp")})
+    expect_same_sizes(recommend_json(path(f)), field, 1.0, f + " (field)", kDecimalUnitRelTol);
   expect_same_sizes(recommend_json(path("radii.txt") + " --d 3 --nu " + nu), ref, 1.0, "radii.txt");
-  const nlohmann::json in_mm = recommend_json(path("mm.txt"));
+  const nlohmann::json in_mm = recommend_json(path("mm.txt") + " --homogeneous");
   EXPECT_NEAR(in_mm["nu"].get<double>(), ref["nu"].get<double>(), kSameSizesRelTol);
   expect_same_sizes(recommend_json(path("pow2.txt") + " --d 3 --nu " + nu), ref, 1.0 / 1024, "pow2.txt");
   expect_same_sizes(recommend_json(path("mm.txt") + " --nu " + nu), ref, 1e-3, "mm.txt", kDecimalUnitRelTol);
@@ -157,7 +164,7 @@ TEST_F(Recommend, LammpsTwoDimensionalDataFileGivesNuFromItsArea) {
   const double x[4] = {1, 4, 6, 8}, d[4] = {2, 2, 1, 1};
   for (int i = 0; i < 4; ++i) f << i + 1 << " 1 " << d[i] << " 1 " << x[i] << " " << x[i] << " 0 0 0 0\n";
   f.close();
-  const auto j = recommend_json(path("2d.data"));
+  const auto j = recommend_json(path("2d.data") + " --homogeneous");
   EXPECT_EQ(j["d"].get<int>(), 2);
   EXPECT_EQ(j["n"].get<int>(), 4);
   const double area = 2 * std::acos(-1.0) * (1 + 0.25);  // two discs of radius 1, two of 0.5

@@ -9,6 +9,7 @@
 #include "hgridlab/grid/geometry.hpp"
 #include "hgridlab/model/cell_sizes.hpp"
 #include "hgridlab/model/distribution.hpp"
+#include "hgridlab/model/time_model.hpp"
 
 namespace hgrid {
 
@@ -39,6 +40,81 @@ Recommendation recommend_cell_sizes(const std::vector<double>& radii, const Mode
   out.linked_cell_size = 2 * out.r_max;
   out.linked_cell.sizes = {out.linked_cell_size};
   return out;
+}
+
+Recommendation recommend_for_field(const DensityField& field, const ModelParams& p,
+                                   const std::optional<TimeModelUse>& time) {
+  const std::vector<double>& radii = field.radii();
+  ModelParams q = p;
+  q.d = field.d();
+  q.nu = std::min(1.0, field.box_nu());
+  validate(q);
+  const Recommendation homogeneous = recommend_cell_sizes(radii, q, time);
+  const double window = 3 * 2 * homogeneous.r_max;
+  FieldUse use;
+  use.summary = field.summary(window);
+  use.homogeneous_sizes = homogeneous.sizes;
+  // Candidates: the homogeneous optima over a ladder of nu, and the fixed
+  // point nu -> sizes -> the field's effective nu for them.
+  std::vector<double> ladder;
+  for (int k = 1; k <= 15; ++k) ladder.push_back(0.05 * k);
+  double nu = std::clamp(use.summary.mean_nu, 0.01, 0.75);
+  for (int it = 0; it < 4; ++it) {
+    q.nu = nu;
+    const double next = std::clamp(field.evaluate(q, recommend_cell_sizes(radii, q, time).sizes).effective_nu, 0.01, 0.75);
+    const bool settled = std::abs(next - nu) < 0.005;
+    nu = next;
+    if (settled) break;
+  }
+  ladder.push_back(nu);
+  struct Best {
+    double cost = INFINITY;
+    Recommendation r;
+    ModelResult model;
+    double nu_eff = 0;
+  } best;
+  for (double x : ladder) {
+    q.nu = x;
+    Recommendation r = recommend_cell_sizes(radii, q, time);
+    FieldResult fr = field.evaluate(q, r.sizes);
+    const ModelResult& m = fr.model;
+    const double nu_eff = std::clamp(fr.effective_nu, 1e-6, 1.0);
+    double cost = m.T_over_N;
+    if (time) {
+      ModelParams at = q;
+      at.nu = nu_eff;
+      const Empirical dist(radii);
+      cost = predict_seconds(time->coef, expected_time_terms(dist, at, r.sizes, time->n)).total();
+    }
+    if (cost < best.cost) best = Best{cost, std::move(r), m, nu_eff};
+  }
+  Recommendation out = std::move(best.r);
+  q.nu = best.nu_eff;
+  out.model = best.model;
+  out.model.sizes = out.sizes;
+  const FieldResult lcf = field.evaluate(q, {out.linked_cell_size});
+  out.linked_cell = lcf.model;
+  out.linked_cell.sizes = {out.linked_cell_size};
+  if (time) {
+    const Empirical dist(radii);
+    out.seconds = predict_seconds(time->coef, expected_time_terms(dist, q, out.sizes, time->n));
+    ModelParams lc = q;
+    lc.nu = std::clamp(lcf.effective_nu, 1e-6, 1.0);
+    out.linked_cell_seconds = predict_seconds(time->coef, expected_time_terms(dist, lc, {out.linked_cell_size}, time->n));
+  }
+  use.nu_effective = best.nu_eff;
+  use.homogeneous_T_over_N = homogeneous.sizes == out.sizes
+                                 ? homogeneous.model.T_over_N
+                                 : evaluate_model(Empirical(radii), ModelParams{field.d(), std::min(1.0, field.box_nu()), p.K, p.search}, out.sizes).T_over_N;
+  use.homogeneous_sizes_T_over_N = field.evaluate(q, homogeneous.sizes).model.T_over_N;
+  out.field = std::move(use);
+  return out;
+}
+
+std::optional<DensityField> density_field_of(const ParticleSet& s) {
+  if (!s.has_positions() || !s.box || s.tilted() || (s.d != 2 && s.d != 3)) return std::nullopt;
+  FieldBox box{s.d, *s.box, s.periodic_per_axis()};
+  return DensityField(s.positions, s.radii, box);
 }
 
 void add_lammps_collections(Recommendation& r, const std::vector<double>& radii, int d, double nu) {

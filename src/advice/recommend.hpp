@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "hgridlab/calibration/k_choice.hpp"
+#include "hgridlab/io/particle_file.hpp"
+#include "hgridlab/model/density_field.hpp"
 #include "hgridlab/model/model.hpp"
 #include "hgridlab/model/time_model.hpp"
 
@@ -17,6 +19,23 @@ namespace hgrid {
 struct TimeModelUse {
   TimeCoefficients coef;
   double n = 0;
+};
+
+/// What a recommendation from positions used (recommend_for_field): the
+/// packing's density field and, beside the field's prediction (in
+/// Recommendation::model), the homogeneous model's at the box's nu.
+struct FieldUse {
+  FieldSummary summary;        // local nu in windows of the linked cell's scan, 3 x 2 r_max
+  double nu_effective = 0;     // the homogeneous nu with the field's count at the chosen sizes
+  double homogeneous_T_over_N = 0;  // the paper's model at the box's nu, at the chosen sizes
+  std::vector<double> homogeneous_sizes;  // what the box's nu alone would have recommended
+  double homogeneous_sizes_T_over_N = 0;  // the field model's T/N for them
+  /// The box is far from homogeneous: the box's nu misses the particles'
+  /// mean local nu by more than kFarFromHomogeneous of it.
+  bool far_from_homogeneous() const {
+    return std::abs(summary.mean_nu - summary.box_nu) > kFarFromHomogeneous * summary.mean_nu;
+  }
+  static constexpr double kFarFromHomogeneous = 0.25;
 };
 
 struct Recommendation {
@@ -38,6 +57,8 @@ struct Recommendation {
   /// add_lammps_collections (callers that want only the sizes skip its search).
   std::vector<double> lammps_collections;
   std::string lammps_model_source;
+  /// Set by recommend_for_field: the field it used.
+  std::optional<FieldUse> field;
 };
 
 /// The optimal sizes (best number of levels L*, or with `time` the
@@ -47,6 +68,19 @@ struct Recommendation {
 /// another unit give the same sizes in that unit. Throws InputError.
 Recommendation recommend_cell_sizes(const std::vector<double>& radii, const ModelParams& p,
                                     const std::optional<TimeModelUse>& time = std::nullopt);
+
+/// The sizes for particles whose positions are known (docs/MODEL.md section
+/// 14): among the homogeneous model's optima for nu = 0.05, 0.1, ..., 0.75
+/// and for the field's effective nu (found by iterating nu -> sizes -> the
+/// field's effective nu for them), the ones with the least field-model T/N
+/// (with `time`: the least predicted seconds at each one's effective nu).
+/// The model in the result is the field model's; p.nu is not used.
+Recommendation recommend_for_field(const DensityField& field, const ModelParams& p,
+                                   const std::optional<TimeModelUse>& time = std::nullopt);
+
+/// The density field of a file's particles (positions in an untilted box),
+/// or nothing when the file has no positions or box, or a tilted box.
+std::optional<DensityField> density_field_of(const ParticleSet& s);
 
 /// Fills r.lammps_collections and r.lammps_model_source with
 /// lammps_collections_for(radii, d, nu).

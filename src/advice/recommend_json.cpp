@@ -36,6 +36,21 @@ std::string recommendation_json(const Recommendation& r, const KChoice& k, Searc
   j["lammps_model"] = r.lammps_model_source;
   j["lammps"] = lammps_settings(r.lammps_collections, skin);
   j["mercurydpm"] = mercurydpm_settings(r.sizes, search);
+  if (r.field) {
+    const FieldUse& f = *r.field;
+    j["field"] = {{"window", f.summary.window},
+                  {"box_nu", f.summary.box_nu},
+                  {"mean_local_nu", f.summary.mean_nu},
+                  {"effective_nu", f.nu_effective},
+                  {"empty_fraction", f.summary.empty_fraction},
+                  {"histogram", f.summary.histogram},
+                  {"far_from_homogeneous", f.far_from_homogeneous()},
+                  {"homogeneous_T_over_N", f.homogeneous_T_over_N},
+                  {"homogeneous_sizes", f.homogeneous_sizes},
+                  {"homogeneous_sizes_T_over_N", f.homogeneous_sizes_T_over_N}};
+  } else {
+    j["field"] = nullptr;
+  }
   return j.dump();
 }
 

@@ -25,13 +25,16 @@ struct RecommendOptions {
   std::optional<double> nu;
   std::optional<int> d;
   double skin = 0;
-  bool json = false;
+  bool json = false, homogeneous = false;
 };
 
 /// Every key of --json, for --help and docs/RECOMMEND.md.
 constexpr const char* kJsonKeys =
     "--json keys: file, format (hdf5|table|lammps_data|lammps_dump|mercury_data|mercury_restart), n, d, r_min, r_max, omega (r_max/r_min), "
-    "nu, nu_source (box|given), box (side lengths or null), tilt (a tilted box's xy [xz yz], or null), boundary, K, K_source (given|calibration|paper), "
+    "nu (the homogeneous nu the sizes were chosen for: with a field, its effective nu), nu_source (field|box|given), field (null "
+    "without positions: window, box_nu, mean_local_nu, effective_nu, empty_fraction, histogram (fraction of particles per local nu "
+    "bin of 0.05), far_from_homogeneous, homogeneous_T_over_N (the box's nu at these sizes), homogeneous_sizes (what the box's nu "
+    "alone recommends), homogeneous_sizes_T_over_N (the field model's T/N for them)), box (side lengths or null), tilt (a tilted box's xy [xz yz], or null), boundary, K, K_source (given|calibration|paper), "
     "calibration_path, K_note (why a stored calibration was not used, or empty), search, levels, sizes (exact cell sizes, file's unit), sizes_pasted (rounded up to 6 digits, "
     "as in the settings), fraction_per_level, particles_per_cell, T_over_N, T_cd_over_N (overlap tests), "
     "T_ca_over_N (cell accesses), linked_cell_size (2 r_max), linked_cell_T_over_N, speedup "
@@ -59,7 +62,22 @@ void print_text(const RecommendOptions& o, const ParticleSet& s, const FileInput
       s.frames > 1 ? ", snapshot " + std::to_string(s.frame) + " of " + std::to_string(s.frames) : std::string();
   std::printf("%s: %zu particles (%s, %dD%s), r_min = %g, r_max = %g (omega = %g)\n", o.file.c_str(), s.size(),
               to_string(s.format), in.d, snapshot.c_str(), r.r_min, r.r_max, r.r_max / r.r_min);
-  if (in.nu_from_box)
+  if (r.field) {
+    const FieldUse& f = *r.field;
+    std::printf("nu = %.4g over the box (boundary %s); the particles' own: local nu in windows of side %.4g (3 x 2 "
+                "r_max) %.4g on average, %.0f%% of the box's cells of that side empty\n",
+                f.summary.box_nu, boundary_description(s).c_str(), f.summary.window, f.summary.mean_nu,
+                100 * f.summary.empty_fraction);
+    std::printf("local nu:");
+    for (std::size_t b = 0; b < f.summary.histogram.size(); ++b)
+      if (f.summary.histogram[b] >= 0.005)
+        std::printf(" [%.2f,%.2f) %.0f%%", b * FieldSummary::kHistogramBin, (b + 1) * FieldSummary::kHistogramBin,
+                    100 * f.summary.histogram[b]);
+    std::printf("\n");
+    if (f.far_from_homogeneous())
+      std::printf("far from homogeneous: the box's nu would mislead; the sizes follow the field model "
+                  "(docs/MODEL.md section 14; --homogeneous for the box's nu)\n");
+  } else if (in.nu_from_box)
     std::printf("nu = %g from the file's box (boundary %s)\n", in.nu, boundary_description(s).c_str());
   else
     std::printf("nu = %g (given)\n", in.nu);
@@ -73,6 +91,11 @@ void print_text(const RecommendOptions& o, const ParticleSet& s, const FileInput
               r.model.T_cd_over_N, r.model.T_ca_over_N);
   std::printf("linked cell (one level of size 2 r_max = %g): T/N = %.4g; predicted speed-up %.4gx\n",
               r.linked_cell_size, r.linked_cell.T_over_N, r.speedup());
+  if (r.field)
+    std::printf("field model (effective nu %.4g); the homogeneous model at the box's nu predicts T/N = %.4g for these "
+                "sizes, and would have chosen %zu level%s (field model T/N %.4g)\n",
+                r.field->nu_effective, r.field->homogeneous_T_over_N, r.field->homogeneous_sizes.size(),
+                r.field->homogeneous_sizes.size() == 1 ? "" : "s", r.field->homogeneous_sizes_T_over_N);
   if (r.seconds)
     std::printf("sizes minimise this machine's predicted seconds (time model): build + query %.4g s, linked cell "
                 "%.4g s, speed-up %.4gx\n",
@@ -95,8 +118,8 @@ void print_json(const RecommendOptions& o, const ParticleSet& s, const FileInput
   j["format"] = to_string(s.format);
   j["n"] = s.size();
   j["d"] = in.d;
-  j["nu"] = in.nu;
-  j["nu_source"] = in.nu_from_box ? "box" : "given";
+  j["nu"] = r.field ? r.field->nu_effective : in.nu;
+  j["nu_source"] = r.field ? "field" : in.nu_from_box ? "box" : "given";
   j["box"] = s.box ? nlohmann::json(std::vector<double>(s.box->begin(), s.box->begin() + in.d)) : nlohmann::json();
   j["tilt"] = s.tilted() ? nlohmann::json(tilt_values(s.tilt, in.d))
                      : nlohmann::json();
@@ -113,8 +136,12 @@ void run_recommend(const RecommendOptions& o) {
   // The time model: asked for, or by default when the calibration that gave
   // K has one for this dimension.
   const std::optional<TimeModelUse> time = choose_time_model(o.cost, k, in.d, double(s.size()));
-  Recommendation r = recommend_cell_sizes(s.radii, ModelParams{in.d, in.nu, k.K, search}, time);
-  add_lammps_collections(r, s.radii, in.d, in.nu);
+  // Positions known and no --nu: the model over the particles' own density
+  // field (docs/MODEL.md section 14).
+  const std::optional<DensityField> field = o.nu || o.homogeneous ? std::nullopt : density_field_of(s);
+  Recommendation r = field ? recommend_for_field(*field, ModelParams{in.d, in.nu, k.K, search}, time)
+                           : recommend_cell_sizes(s.radii, ModelParams{in.d, in.nu, k.K, search}, time);
+  add_lammps_collections(r, s.radii, in.d, r.field ? r.field->nu_effective : in.nu);
   if (o.json) print_json(o, s, in, k, r, search);
   else print_text(o, s, in, k, r, search);
 }
@@ -128,7 +155,10 @@ void register_recommend_commands(CLI::App& app) {
                   "particle file (HDF5, CSV/text, LAMMPS data or dump, MercuryDPM .data or .restart; docs/PARTICLE_FILES.md)")
       ->required();
   add_frame_option(sub, o->frame);
-  sub->add_option("--nu", o->nu, "packing fraction (default: from the file's box; needed when it has none)");
+  sub->add_option("--nu", o->nu,
+                  "packing fraction of a homogeneous packing (default: the particles' own density field when the file "
+                  "has positions and an untilted box, else the box's; needed when it has none)");
+  sub->add_flag("--homogeneous", o->homogeneous, "take nu from the box even when the file has positions (the paper's model)");
   sub->add_option("--d", o->d, "dimension, 2 or 3 (default: from the file)");
   sub->add_option("--K", o->K, std::string(kKHelp) + " (default: the stored calibration if any, else 0.2)");
   sub->add_option("--search", o->search, "topdown | bottomup")->capture_default_str();

@@ -35,9 +35,16 @@ struct ParticleSet {
   std::array<double, 3> tilt{};       // a tilted (triclinic) box's xy xz yz (LAMMPS; grid/tilted_box.hpp), else 0
   std::optional<Boundary> boundary;   // when the file says (`# boundary`, dump flags, HDF5)
   bool mixed_boundary = false;        // periodic and non-periodic axes (a LAMMPS dump, a MercuryDPM .restart)
+  std::array<bool, 3> periodic_axes{};  // per axis, where the file says so per axis (LAMMPS dumps, .restart files)
   std::size_t frame = 0, frames = 1;  // the snapshot read, of how many the file holds (dumps, MercuryDPM .data)
   std::size_t size() const { return radii.size(); }
   bool has_positions() const { return !positions.empty(); }
+  /// Periodic per axis: periodic_axes for a mixed boundary, else the boundary's (assumed periodic if none).
+  std::array<bool, 3> periodic_per_axis() const {
+    if (mixed_boundary) return periodic_axes;
+    const bool p = !boundary || *boundary == Boundary::periodic;
+    return {p, p, p};
+  }
   bool tilted() const { return tilt[0] != 0 || tilt[1] != 0 || tilt[2] != 0; }
   /// Total particle volume over the box's (needs d and a box).
   double packing_fraction() const;

@@ -22,6 +22,15 @@ bool is_section(std::string_view body) {
   return !body.empty() && !to_number(split_ws(body)[0], v);
 }
 
+/// A 2D dump's boundary from x and y alone (LAMMPS writes z's flag, `p`, too).
+void planar_boundary(ParticleSet& s) {
+  if (s.d != 2 || !s.mixed_boundary) return;
+  const int periodic = s.periodic_axes[0] + s.periodic_axes[1];
+  if (periodic == 1) return;
+  s.mixed_boundary = false;
+  s.boundary = periodic == 2 ? Boundary::periodic : Boundary::walls;
+}
+
 /// Box sides from lo/hi pairs, positions moved to the lower corner, and a 2D
 /// system (LAMMPS keeps z: every z = 0 in a box straddling it) made 2D.
 void finish(ParticleSet& s, const std::array<double, 3>& lo, const std::array<double, 3>& hi, const std::string& name) {
@@ -171,6 +180,7 @@ ParticleSet parse_lammps_dump(std::string_view text, const std::string& name, st
   ParticleSet s = empty_set(ParticleFormat::lammps_dump);
   std::optional<std::size_t> n;
   std::optional<std::array<double, 3>> lo, hi;
+  std::array<std::array<bool, 2>, 3> shrink{};  // per axis, lo and hi: LAMMPS's s or m (bounds follow the atoms)
   std::string_view line;
   bool skipping = false;  // inside an ITEM this reader does not use
   while (at.next(line)) {
@@ -198,7 +208,11 @@ ParticleSet parse_lammps_dump(std::string_view text, const std::string& name, st
         throw InputError("BOX BOUNDS", "expected three boundary flags (pp pp pp, ff ff ff, ...) at " + at.where());
       int periodic = 0;
       s.mixed_boundary = false;
-      for (auto f : flags) periodic += f == "pp";
+      for (int a = 0; a < 3; ++a) {
+        periodic += s.periodic_axes[a] = flags[a] == "pp";
+        for (int side = 0; side < 2; ++side)
+          shrink[a][side] = flags[a].size() == 2 && (flags[a][side] == 's' || flags[a][side] == 'm');
+      }
       if (periodic == 3) s.boundary = Boundary::periodic;
       else if (periodic == 0) s.boundary = Boundary::walls;
       else s.mixed_boundary = true;
@@ -268,6 +282,15 @@ ParticleSet parse_lammps_dump(std::string_view text, const std::string& name, st
       if (s.radii.empty())
         throw InputError("ATOMS", "snapshot " + std::to_string(target) + " of " + name +
                                       " has no atoms; choose another with --frame");
+      // Shrink-wrapped bounds (s, m) follow the atoms only when LAMMPS
+      // reneighbours, so a dump between may hold centres just beyond them:
+      // the bounds move out to those centres, as LAMMPS's next would.
+      for (int a = 0; a < dims && !s.tilted(); ++a)
+        for (std::size_t i = 0; i < s.size(); ++i) {
+          const double x = s.positions[std::size_t(dims) * i + a];
+          if (shrink[a][0] && x < (*lo)[a]) (*lo)[a] = x;
+          if (shrink[a][1] && x > (*hi)[a]) (*hi)[a] = x;
+        }
       if (dims == 2) {  // a 2D dump: x and y only
         if (s.tilt[1] != 0 || s.tilt[2] != 0)
           throw InputError("BOX BOUNDS", name + " is 2D (x and y only) but its box tilts z (xz, yz not 0)");
@@ -276,9 +299,11 @@ ParticleSet parse_lammps_dump(std::string_view text, const std::string& name, st
           for (int a = 0; a < 2; ++a) s.positions[2 * i + a] -= (*lo)[a];
         s.box = std::array<double, 3>{(*hi)[0] - (*lo)[0], (*hi)[1] - (*lo)[1], 0};
         if (!((*s.box)[0] > 0 && (*s.box)[1] > 0)) throw InputError("BOX BOUNDS", "lo must be < hi in " + name);
+        planar_boundary(s);
         return s;
       }
       finish(s, *lo, *hi, name);
+      planar_boundary(s);
       return s;  // the chosen snapshot only
     } else {
       skipping = true;  // TIMESTEP, UNITS, TIME, ...: their values are not needed

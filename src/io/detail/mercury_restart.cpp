@@ -209,6 +209,7 @@ ParticleSet parse_mercury_restart(std::string_view text, const std::string& name
   for (int a = 0; a < d; ++a) {
     if (period[a]) {
       ++n_periodic;
+      s.periodic_axes[a] = true;
       lo[a] = period[a]->lo, hi[a] = period[a]->hi;
     } else if (wall[a][0] && wall[a][1]) {
       lo[a] = *wall[a][0], hi[a] = *wall[a][1];

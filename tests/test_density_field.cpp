@@ -1,0 +1,153 @@
+// The cost model over a packing's density field (model/density_field.hpp,
+// advice recommend_for_field; docs/MODEL.md section 14), checked against what
+// the counted grid measures on beds LAMMPS poured (tests/data/beds, made by
+// experiments/beds/make_fixtures.sh) and on homogeneous packings.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "cli_support.hpp"
+#include "hgridlab/advice/recommend.hpp"
+#include "hgridlab/io/particle_file.hpp"
+#include "hgridlab/measure/measurement.hpp"
+#include "hgridlab/model/density_field.hpp"
+#include "support.hpp"
+
+namespace hgrid::test {
+namespace {
+
+const std::string kBeds = std::string(HGRID_SOURCE_DIR) + "/tests/data/beds/";
+const std::string kNoCalibration = "HGRID_CALIBRATION=/nonexistent/calibration.json";
+
+/// Issue 88's targets, with no calibration: the recommended sizes measure
+/// within this of the best of the scan ...
+constexpr double kBestOfScanRelTol = 0.05;
+/// ... and the field model's T/N is within this of what they measure.
+constexpr double kPredictionRelTol = 0.10;
+/// Halving or doubling the field's bins moves its prediction by less than this.
+constexpr double kResolutionRelTol = 0.01;
+/// Random centres in a periodic box: F = 1 up to counting noise (N = 20 000;
+/// level pairs holding at least 5 % of the count: measured 0.3-1.2 %).
+constexpr double kUniformFRelTol = 0.02;
+/// The scan: the model's sizes for these nu, and the linked cell.
+constexpr double kScanNu[] = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7};
+
+constexpr double kK = 0.2;
+
+double measured(const Packing& p, const std::vector<double>& sizes) {
+  return measure(p, GridParams{sizes, Search::top_down}).T_over_N;
+}
+
+DensityField field_of(const ParticleSet& s, const FieldOptions& opt = {}) {
+  return DensityField(s.positions, s.radii, FieldBox{s.d, *s.box, s.periodic_per_axis()}, opt);
+}
+
+struct Bed {
+  const char* file;
+  int frame;  // 0: in progress (a gas over a bed), 1: settled
+};
+constexpr Bed kBedsUsed[] = {{"bed3d_o5_s1.dump", 0}, {"bed3d_o5_s1.dump", 1}, {"bed3d_o3_s2.dump", 0},
+                             {"bed3d_o3_s2.dump", 1}, {"bed2d_o5_s1.dump", 0}, {"bed2d_o5_s1.dump", 1},
+                             {"bed2d_o10_s2.dump", 0}, {"bed2d_o10_s2.dump", 1}};
+
+TEST(DensityField, UniformCentresInAPeriodicBoxGiveTheBoxModel) {
+  constexpr std::uint64_t kSeed = 5;
+  const Scene<3> s = random_scene<3>(20000, 0.3, -3, 5, Boundary::periodic, kSeed);
+  std::vector<double> x, r;
+  for (const auto& p : s.spheres) {
+    r.push_back(p.r);
+    for (double c : p.x) x.push_back(c);
+  }
+  const DensityField f(x, r, FieldBox{3, s.box, {true, true, true}});
+  const Empirical dist(r);
+  const std::vector<double> sizes = recommend_cell_sizes(r, ModelParams{3, f.box_nu(), kK}).sizes;
+  const std::vector<double> F = f.factors(ModelParams{3, f.box_nu(), kK}, sizes);
+  const ModelResult m = evaluate_model(dist, ModelParams{3, f.box_nu(), kK}, sizes);
+  for (std::size_t at = 0; at < F.size(); ++at)
+    if (m.T_cd_pair[at] > 0.05 * m.T_cd_over_N) EXPECT_NEAR(F[at], 1.0, kUniformFRelTol) << "pair " << at << " seed " << kSeed;
+  EXPECT_NEAR(f.evaluate(ModelParams{3, 0.3, kK}, sizes).model.T_over_N, m.T_over_N, kUniformFRelTol * m.T_over_N);
+  EXPECT_NEAR(f.summary(3 * 2 * dist.r_max()).mean_nu, f.box_nu(), kUniformFRelTol * f.box_nu());
+}
+
+TEST(DensityField, PredictionHoldsWhenTheBinsAreHalvedOrDoubled) {
+  for (const Bed& b : kBedsUsed) {
+    const ParticleSet s = read_particles(kBeds + b.file, Isolation::none, b.frame);
+    const DensityField f = field_of(s);
+    const Recommendation r = recommend_for_field(f, ModelParams{s.d, 0.5, kK});
+    const double at = r.model.T_over_N;
+    for (double bins : {kFieldBinsPerWindow / 2, kFieldBinsPerWindow * 2}) {
+      FieldOptions opt;
+      opt.bins_per_window = bins;
+      const double other = field_of(s, opt).evaluate(ModelParams{s.d, 0.5, kK}, r.sizes).model.T_over_N;
+      EXPECT_NEAR(other, at, kResolutionRelTol * at) << b.file << " frame " << b.frame << " bins per window " << bins;
+    }
+  }
+}
+
+// Issue 88's "done when", counted (machine-independent): on poured beds,
+// settled and in progress, 2D and 3D, the recommended sizes measure within
+// 5 % of the best of the scan and the field model predicts within 10 %.
+TEST(DensityField, RecommendationOnPouredBedsIsNearTheBestOfTheScan) {
+  for (const Bed& b : kBedsUsed) {
+    const ParticleSet s = read_particles(kBeds + b.file, Isolation::none, b.frame);
+    const Packing p = to_packing(s, b.file);
+    double best = measured(p, {2 * *std::max_element(s.radii.begin(), s.radii.end())});
+    for (double nu : kScanNu) best = std::min(best, measured(p, recommend_cell_sizes(s.radii, ModelParams{s.d, nu, kK}).sizes));
+    const Recommendation r = recommend_for_field(field_of(s), ModelParams{s.d, 0.5, kK});
+    const double got = measured(p, r.sizes);
+    EXPECT_LE(got, (1 + kBestOfScanRelTol) * best) << b.file << " frame " << b.frame;
+    EXPECT_NEAR(r.model.T_over_N, got, kPredictionRelTol * got) << b.file << " frame " << b.frame;
+    ASSERT_TRUE(r.field);
+    EXPECT_TRUE(r.field->far_from_homogeneous()) << b.file << " frame " << b.frame;
+    // The box's nu alone: the issue's finding, kept as a check that the
+    // fixtures still show it (predictions a half or more too low).
+    const Recommendation h = recommend_cell_sizes(s.radii, ModelParams{s.d, s.packing_fraction(), kK});
+    EXPECT_LT(h.model.T_over_N, 0.6 * measured(p, h.sizes)) << b.file << " frame " << b.frame;
+  }
+}
+
+TEST(DensityField, RecommendationOnHomogeneousPackingsIsNearTheBestOfTheScan) {
+  constexpr std::uint64_t kSeed = 8;
+  for (Boundary bc : {Boundary::periodic, Boundary::walls}) {
+    const Scene<3> sc = random_scene<3>(8000, 0.3, -3, 8, bc, kSeed);
+    const Packing p = packing_from(sc, bc);
+    std::vector<double> x;
+    for (const auto& q : sc.spheres)
+      for (double c : q.x) x.push_back(c);
+    const bool per = bc == Boundary::periodic;
+    const DensityField f(x, p.radii, FieldBox{3, sc.box, {per, per, per}});
+    double best = INFINITY;
+    for (double nu : kScanNu) best = std::min(best, measured(p, recommend_cell_sizes(p.radii, ModelParams{3, nu, kK}).sizes));
+    const Recommendation r = recommend_for_field(f, ModelParams{3, 0.3, kK});
+    const double got = measured(p, r.sizes);
+    EXPECT_LE(got, (1 + kBestOfScanRelTol) * best) << to_string(bc) << " seed " << kSeed;
+    EXPECT_NEAR(r.model.T_over_N, got, kPredictionRelTol * got) << to_string(bc) << " seed " << kSeed;
+    EXPECT_FALSE(r.field->far_from_homogeneous()) << to_string(bc);
+  }
+}
+
+TEST(DensityField, RecommendCommandUsesTheFieldAndSaysSo) {
+  const std::string bed = kBeds + "bed3d_o5_s1.dump";
+  const Result text = hgrid_run("recommend " + bed, kNoCalibration);
+  ASSERT_EQ(text.status, 0) << text.err;
+  EXPECT_NE(text.out.find("far from homogeneous"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("local nu:"), std::string::npos) << text.out;
+  const Result js = hgrid_run("recommend " + bed + " --json", kNoCalibration);
+  ASSERT_EQ(js.status, 0) << js.err;
+  const auto j = nlohmann::json::parse(js.out);
+  EXPECT_EQ(j["nu_source"], "field");
+  EXPECT_TRUE(j["field"]["far_from_homogeneous"].get<bool>());
+  EXPECT_GT(j["field"]["mean_local_nu"].get<double>(), 3 * j["field"]["box_nu"].get<double>());
+  // --homogeneous and --nu: the box's or the given nu, as before.
+  const auto h = nlohmann::json::parse(hgrid_run("recommend " + bed + " --json --homogeneous", kNoCalibration).out);
+  EXPECT_EQ(h["nu_source"], "box");
+  EXPECT_TRUE(h["field"].is_null());
+  const auto g = nlohmann::json::parse(hgrid_run("recommend " + bed + " --json --nu 0.4", kNoCalibration).out);
+  EXPECT_EQ(g["nu_source"], "given");
+  EXPECT_DOUBLE_EQ(g["nu"].get<double>(), 0.4);
+}
+
+}  // namespace
+}  // namespace hgrid::test
