@@ -70,7 +70,7 @@ GridParams grid_params(const Packing& p, const std::optional<std::vector<double>
   const Search s = parse_search(search);
   if (sizes) return GridParams{*sizes, s};
   if (p.tilted()) return GridParams{model_sizes(p, SizeRequest{}, s, choose_K("").K), s};  // the mapped packing's
-  return GridParams{recommend_cell_sizes(p.radii, ModelParams{p.d, p.packing_fraction(), choose_K("").K, s}).sizes, s};
+  return GridParams{recommend_for_packing(p, choose_K("").K, s).sizes, s};  // its density field's, as recommend()
 }
 
 py::dict recommend(const DoubleArray& radii, std::optional<double> nu, int d, const std::optional<py::object>& K,
@@ -87,7 +87,11 @@ py::dict recommend(const DoubleArray& radii, std::optional<double> nu, int d, co
   const std::optional<TimeModelUse> time = choose_time_model(cost, k, d, static_cast<double>(r_list.size()));
   Recommendation r;
   if (positions && !nu) {
-    const std::vector<double> x = to_vector(*positions, "positions"), b = to_vector(*box, "box");
+    if (positions->ndim() != 2 || positions->shape(1) != d)
+      throw InputError("positions", "must be an N x d array (d = " + std::to_string(d) + ")");
+    if (static_cast<std::size_t>(positions->shape(0)) != r_list.size())
+      throw InputError("radii", "must have one value per row of positions");
+    const std::vector<double> x(positions->data(), positions->data() + positions->size()), b = to_vector(*box, "box");
     if (b.size() != static_cast<std::size_t>(d)) throw InputError("box", "must hold d = " + std::to_string(d) + " side lengths");
     FieldBox fb{d, {}, {true, true, true}};
     for (int a = 0; a < d; ++a) fb.side[a] = b[a];

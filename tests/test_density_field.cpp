@@ -147,6 +147,23 @@ TEST(DensityField, RecommendCommandUsesTheFieldAndSaysSo) {
   const auto g = nlohmann::json::parse(hgrid_run("recommend " + bed + " --json --nu 0.4", kNoCalibration).out);
   EXPECT_EQ(g["nu_source"], "given");
   EXPECT_DOUBLE_EQ(g["nu"].get<double>(), 0.4);
+  // count --cells optimal: the same sizes, and it says where they come from.
+  const Result c = hgrid_run("count " + bed + " --cells optimal --model none --threads 1 --json", kNoCalibration);
+  ASSERT_EQ(c.status, 0) << c.err;
+  EXPECT_EQ(nlohmann::json::parse(c.out)["sizes"], j["sizes"]);
+  EXPECT_NE(c.err.find("field model"), std::string::npos) << c.err;
+}
+
+// A homogeneous packing keeps the paper's sizes at the box's nu (the
+// figures' packings: their counts and model columns do not move).
+TEST(DensityField, HomogeneousFileKeepsTheBoxSizes) {
+  constexpr std::uint64_t kSeed = 12;
+  const Packing p = packing_from(random_scene<3>(3000, 0.4, -3, 10, Boundary::periodic, kSeed), Boundary::periodic);
+  const Recommendation r = recommend_for_packing(p, kK);
+  ASSERT_TRUE(r.field);
+  EXPECT_FALSE(r.field->sizes_from_field());
+  EXPECT_EQ(r.sizes, recommend_cell_sizes(p.radii, ModelParams{3, p.packing_fraction(), kK}).sizes);
+  EXPECT_EQ(r.sizes, r.field->homogeneous_sizes);
 }
 
 }  // namespace

@@ -72,6 +72,29 @@ def test_recommend_matches_the_command(tmp_path):
     assert hgridlab.recommend(radii, 0.6, 3, K=0.8)["K_source"] == "given"
 
 
+BEDS = os.path.join(os.path.dirname(__file__), "..", "..", "tests", "data", "beds")
+
+
+@pytest.mark.parametrize("name", ["bed3d_o5_s1.dump", "bed2d_o10_s2.dump"])
+def test_recommend_from_positions_takes_the_density_field(name):
+    # A bed LAMMPS poured under a tall empty box (issue 88): the box's nu
+    # predicts half the work; the field model predicts what the grid counts.
+    p = hgridlab.read_packing(os.path.join(BEDS, name))
+    d, periodic = p["d"], p["boundary"] == "periodic"
+    r = hgridlab.recommend(p["radii"], d=d, positions=p["positions"], box=p["box"][:d], periodic=periodic)
+    f = r["field"]
+    assert f["far_from_homogeneous"] and f["sizes_from"] == "field"
+    assert f["mean_local_nu"] > 2.5 * f["box_nu"] and r["nu"] == f["effective_nu"]
+    got = hgridlab.count(p["positions"], p["radii"], p["box"][:d], periodic, sizes=r["sizes"], threads=1)
+    assert r["T_over_N"] == pytest.approx(got["T_over_N"], rel=0.10)
+    h = hgridlab.recommend(p["radii"], nu=p["nu"], d=d)
+    assert h["field"] is None and h["T_over_N"] < 0.6 * got["T_over_N"]
+    with pytest.raises(ValueError, match="box"):
+        hgridlab.recommend(p["radii"], d=d, positions=p["positions"])
+    with pytest.raises(ValueError, match="nu"):
+        hgridlab.recommend(p["radii"], d=d)
+
+
 def test_recommend_refuses_bad_input():
     with pytest.raises(ValueError, match="radii"):
         hgridlab.recommend(np.array([1.0, -1.0]), nu=0.5, d=3)

@@ -54,39 +54,47 @@ Recommendation recommend_for_field(const DensityField& field, const ModelParams&
   FieldUse use;
   use.summary = field.summary(window);
   use.homogeneous_sizes = homogeneous.sizes;
-  // Candidates: the homogeneous optima over a ladder of nu, and the fixed
-  // point nu -> sizes -> the field's effective nu for them.
-  std::vector<double> ladder;
-  for (int k = 1; k <= 15; ++k) ladder.push_back(0.05 * k);
-  double nu = std::clamp(use.summary.mean_nu, 0.01, 0.75);
-  for (int it = 0; it < 4; ++it) {
-    q.nu = nu;
-    const double next = std::clamp(field.evaluate(q, recommend_cell_sizes(radii, q, time).sizes).effective_nu, 0.01, 0.75);
-    const bool settled = std::abs(next - nu) < 0.005;
-    nu = next;
-    if (settled) break;
-  }
-  ladder.push_back(nu);
   struct Best {
     double cost = INFINITY;
     Recommendation r;
     ModelResult model;
     double nu_eff = 0;
   } best;
-  for (double x : ladder) {
-    q.nu = x;
-    Recommendation r = recommend_cell_sizes(radii, q, time);
+  const auto consider = [&](Recommendation r) {
     FieldResult fr = field.evaluate(q, r.sizes);
-    const ModelResult& m = fr.model;
     const double nu_eff = std::clamp(fr.effective_nu, 1e-6, 1.0);
-    double cost = m.T_over_N;
+    double cost = fr.model.T_over_N;
     if (time) {
       ModelParams at = q;
       at.nu = nu_eff;
-      const Empirical dist(radii);
-      cost = predict_seconds(time->coef, expected_time_terms(dist, at, r.sizes, time->n)).total();
+      cost = predict_seconds(time->coef, expected_time_terms(Empirical(radii), at, r.sizes, time->n)).total();
     }
-    if (cost < best.cost) best = Best{cost, std::move(r), m, nu_eff};
+    if (cost < best.cost) best = Best{cost, std::move(r), std::move(fr.model), nu_eff};
+  };
+  if (!use.far_from_homogeneous()) {
+    // Close to homogeneous: the paper's sizes at the box's nu (on the
+    // figures' packings as good as the field's, or better by 1-2 % with
+    // walls: docs/MODEL.md section 14), with the field's prediction.
+    consider(homogeneous);
+  } else {
+    // Candidates: the homogeneous optima over a ladder of nu, and the fixed
+    // point nu -> sizes -> the field's effective nu for them.
+    std::vector<double> ladder;
+    for (int k = 1; k <= 15; ++k) ladder.push_back(0.05 * k);
+    double nu = std::clamp(use.summary.mean_nu, 0.01, 0.75);
+    for (int it = 0; it < 4; ++it) {
+      q.nu = nu;
+      const double next =
+          std::clamp(field.evaluate(q, recommend_cell_sizes(radii, q, time).sizes).effective_nu, 0.01, 0.75);
+      const bool settled = std::abs(next - nu) < 0.005;
+      nu = next;
+      if (settled) break;
+    }
+    ladder.push_back(nu);
+    for (double x : ladder) {
+      q.nu = x;
+      consider(recommend_cell_sizes(radii, q, time));
+    }
   }
   Recommendation out = std::move(best.r);
   q.nu = best.nu_eff;
@@ -111,10 +119,24 @@ Recommendation recommend_for_field(const DensityField& field, const ModelParams&
   return out;
 }
 
+std::optional<DensityField> density_field_of(const Packing& p) {
+  if (p.size() == 0 || p.tilted()) return std::nullopt;
+  const bool per = p.boundary == Boundary::periodic;
+  return DensityField(p.positions, p.radii, FieldBox{p.d, p.box, {per, per, per}});
+}
+
 std::optional<DensityField> density_field_of(const ParticleSet& s) {
   if (!s.has_positions() || !s.box || s.tilted() || (s.d != 2 && s.d != 3)) return std::nullopt;
   FieldBox box{s.d, *s.box, s.periodic_per_axis()};
   return DensityField(s.positions, s.radii, box);
+}
+
+Recommendation recommend_for_packing(const Packing& p, double K, Search search) {
+  const ModelParams mp{p.d, std::min(1.0, p.packing_fraction()), K, search};
+  const std::optional<DensityField> field = density_field_of(p);
+  Recommendation r = field ? recommend_for_field(*field, mp) : recommend_cell_sizes(p.radii, mp);
+  add_lammps_collections(r, p.radii, p.d, r.field ? r.field->nu_effective : mp.nu);
+  return r;
 }
 
 void add_lammps_collections(Recommendation& r, const std::vector<double>& radii, int d, double nu) {

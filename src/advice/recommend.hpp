@@ -11,6 +11,7 @@
 #include "hgridlab/model/density_field.hpp"
 #include "hgridlab/model/model.hpp"
 #include "hgridlab/model/time_model.hpp"
+#include "hgridlab/packing/packing.hpp"
 
 namespace hgrid {
 
@@ -28,7 +29,8 @@ struct FieldUse {
   FieldSummary summary;        // local nu in windows of the linked cell's scan, 3 x 2 r_max
   double nu_effective = 0;     // the homogeneous nu with the field's count at the chosen sizes
   double homogeneous_T_over_N = 0;  // the paper's model at the box's nu, at the chosen sizes
-  std::vector<double> homogeneous_sizes;  // what the box's nu alone would have recommended
+  std::vector<double> homogeneous_sizes;  // what the box's nu alone recommends
+  bool sizes_from_field() const { return far_from_homogeneous(); }
   double homogeneous_sizes_T_over_N = 0;  // the field model's T/N for them
   /// The box is far from homogeneous: the box's nu misses the particles'
   /// mean local nu by more than kFarFromHomogeneous of it.
@@ -70,17 +72,26 @@ Recommendation recommend_cell_sizes(const std::vector<double>& radii, const Mode
                                     const std::optional<TimeModelUse>& time = std::nullopt);
 
 /// The sizes for particles whose positions are known (docs/MODEL.md section
-/// 14): among the homogeneous model's optima for nu = 0.05, 0.1, ..., 0.75
-/// and for the field's effective nu (found by iterating nu -> sizes -> the
-/// field's effective nu for them), the ones with the least field-model T/N
-/// (with `time`: the least predicted seconds at each one's effective nu).
-/// The model in the result is the field model's; p.nu is not used.
+/// 14). Far from homogeneous (FieldUse::far_from_homogeneous): among the
+/// homogeneous model's optima for nu = 0.05, 0.1, ..., 0.75 and for the
+/// field's effective nu (found by iterating nu -> sizes -> the field's
+/// effective nu for them), the ones with the least field-model T/N (with
+/// `time`: the least predicted seconds at each one's effective nu). Close to
+/// homogeneous: the paper's optimum at the box's nu (recommend_cell_sizes).
+/// Either way the model in the result is the field model's; p.nu is not used.
 Recommendation recommend_for_field(const DensityField& field, const ModelParams& p,
                                    const std::optional<TimeModelUse>& time = std::nullopt);
 
 /// The density field of a file's particles (positions in an untilted box),
 /// or nothing when the file has no positions or box, or a tilted box.
 std::optional<DensityField> density_field_of(const ParticleSet& s);
+/// The same for a packing (nothing for a tilted one).
+std::optional<DensityField> density_field_of(const Packing& p);
+
+/// What `hgrid recommend` gives a packing (no time model): the field model
+/// when it has positions in an untilted box, else the box's nu; with LAMMPS
+/// collections for the nu used (the field's effective one).
+Recommendation recommend_for_packing(const Packing& p, double K, Search search = Search::top_down);
 
 /// Fills r.lammps_collections and r.lammps_model_source with
 /// lammps_collections_for(radii, d, nu).

@@ -45,6 +45,7 @@ std::string recommendation_json(const Recommendation& r, const KChoice& k, Searc
                   {"empty_fraction", f.summary.empty_fraction},
                   {"histogram", f.summary.histogram},
                   {"far_from_homogeneous", f.far_from_homogeneous()},
+                  {"sizes_from", f.sizes_from_field() ? "field" : "box"},
                   {"homogeneous_T_over_N", f.homogeneous_T_over_N},
                   {"homogeneous_sizes", f.homogeneous_sizes},
                   {"homogeneous_sizes_T_over_N", f.homogeneous_sizes_T_over_N}};

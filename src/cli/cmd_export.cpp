@@ -32,11 +32,6 @@ struct ExportOptions {
   int builds = 10;
 };
 
-/// The sizes `hgrid recommend` gives for p's radii and packing fraction.
-std::vector<double> recommended_sizes(const Packing& p, const std::string& K) {
-  const ModelParams mp{p.d, p.packing_fraction(), choose_K(K).K, Search::top_down};
-  return recommend_cell_sizes(p.radii, mp).sizes;
-}
 
 void run_export(ExportOptions o) {
   if (o.lammps.empty() && o.xyz.empty() && o.vtk.empty())
@@ -54,8 +49,15 @@ void run_export(ExportOptions o) {
   // Everything is computed and checked before the first file is written.
   LammpsScript s;
   s.builds = o.builds;
+  // What `hgrid recommend` gives the packing (its density field when it
+  // has positions), computed once for the sizes and the collections.
+  std::optional<Recommendation> advice;
+  const auto recommended = [&]() -> const Recommendation& {
+    if (!advice) advice = recommend_for_packing(p, choose_K(o.K).K);
+    return *advice;
+  };
   if (o.collections == "model") {  // as `hgrid recommend` gives them: LAMMPS's own cost model
-    s.collections = rounded_up_sizes(lammps_collections_for(p.radii, p.d, p.packing_fraction()));
+    s.collections = rounded_up_sizes(recommended().lammps_collections);
   } else if (!o.collections.empty()) {
     s.collections = parse_list(o.collections, "collections");
   } else {
@@ -68,7 +70,7 @@ void run_export(ExportOptions o) {
   if (!o.lammps.empty()) lammps_input(p, s);  // validates the classes
   GridPlacement g;
   if (!o.xyz.empty() || !o.vtk.empty()) {
-    const std::vector<double> sizes = o.sizes.empty() ? recommended_sizes(p, o.K) : parse_list(o.sizes, "sizes");
+    const std::vector<double> sizes = o.sizes.empty() ? recommended().sizes : parse_list(o.sizes, "sizes");
     g = place_in_grid(p, GridParams{sizes, Search::top_down});
   }
   // The files written, one per line on stdout; not a stream written in

@@ -34,7 +34,8 @@ constexpr const char* kJsonKeys =
     "nu (the homogeneous nu the sizes were chosen for: with a field, its effective nu), nu_source (field|box|given), field (null "
     "without positions: window, box_nu, mean_local_nu, effective_nu, empty_fraction, histogram (fraction of particles per local nu "
     "bin of 0.05), far_from_homogeneous, homogeneous_T_over_N (the box's nu at these sizes), homogeneous_sizes (what the box's nu "
-    "alone recommends), homogeneous_sizes_T_over_N (the field model's T/N for them)), box (side lengths or null), tilt (a tilted box's xy [xz yz], or null), boundary, K, K_source (given|calibration|paper), "
+    "alone recommends), homogeneous_sizes_T_over_N (the field model's T/N for them), sizes_from (field: far from homogeneous; "
+    "box: the homogeneous sizes)), box (side lengths or null), tilt (a tilted box's xy [xz yz], or null), boundary, K, K_source (given|calibration|paper), "
     "calibration_path, K_note (why a stored calibration was not used, or empty), search, levels, sizes (exact cell sizes, file's unit), sizes_pasted (rounded up to 6 digits, "
     "as in the settings), fraction_per_level, particles_per_cell, T_over_N, T_cd_over_N (overlap tests), "
     "T_ca_over_N (cell accesses), linked_cell_size (2 r_max), linked_cell_T_over_N, speedup "
@@ -77,6 +78,9 @@ void print_text(const RecommendOptions& o, const ParticleSet& s, const FileInput
     if (f.far_from_homogeneous())
       std::printf("far from homogeneous: the box's nu would mislead; the sizes follow the field model "
                   "(docs/MODEL.md section 14; --homogeneous for the box's nu)\n");
+    else
+      std::printf("close to homogeneous: the sizes are the paper's model's at the box's nu; the predictions "
+                  "the field model's (docs/MODEL.md section 14)\n");
   } else if (in.nu_from_box)
     std::printf("nu = %g from the file's box (boundary %s)\n", in.nu, boundary_description(s).c_str());
   else
@@ -91,11 +95,15 @@ void print_text(const RecommendOptions& o, const ParticleSet& s, const FileInput
               r.model.T_cd_over_N, r.model.T_ca_over_N);
   std::printf("linked cell (one level of size 2 r_max = %g): T/N = %.4g; predicted speed-up %.4gx\n",
               r.linked_cell_size, r.linked_cell.T_over_N, r.speedup());
-  if (r.field)
-    std::printf("field model (effective nu %.4g); the homogeneous model at the box's nu predicts T/N = %.4g for these "
-                "sizes, and would have chosen %zu level%s (field model T/N %.4g)\n",
+  if (r.field && r.field->sizes_from_field())
+    std::printf("predictions from the field model (effective nu %.4g); the homogeneous model at the box's nu predicts "
+                "T/N = %.4g for these sizes, and would have chosen %zu level%s (field model T/N %.4g)\n",
                 r.field->nu_effective, r.field->homogeneous_T_over_N, r.field->homogeneous_sizes.size(),
                 r.field->homogeneous_sizes.size() == 1 ? "" : "s", r.field->homogeneous_sizes_T_over_N);
+  else if (r.field)
+    std::printf("predictions from the field model (effective nu %.4g); the homogeneous model at the box's nu: T/N = "
+                "%.4g\n",
+                r.field->nu_effective, r.field->homogeneous_T_over_N);
   if (r.seconds)
     std::printf("sizes minimise this machine's predicted seconds (time model): build + query %.4g s, linked cell "
                 "%.4g s, speed-up %.4gx\n",

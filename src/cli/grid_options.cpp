@@ -1,5 +1,8 @@
 #include "grid_options.hpp"
 
+#include <cstdio>
+
+#include "hgridlab/advice/recommend.hpp"
 #include "hgridlab/calibration/calibration.hpp"
 #include "hgridlab/io/packing_file.hpp"
 #include "hgridlab/io/particle_file.hpp"
@@ -48,6 +51,19 @@ GridParams resolve(const GridOptions& o, const Packing& p, double K) {
     r.method = parse_cell_method(o.cells);
     if (parse_cost(o.cost) == CostKind::time) r.time_model = calibrated_time_model(p.d, "cost").coef;
     g.sizes = model_sizes(p, r, g.search, K);
+    // Optimal sizes for a packing far from homogeneous (a bed under an
+    // empty box): the field model's, as `hgrid recommend` gives them.
+    if (r.method == CellMethod::optimal && !r.time_model && !r.excluded_model && !r.levels) {
+      if (const std::optional<DensityField> field = density_field_of(p)) {
+        const Recommendation rec = recommend_for_field(*field, ModelParams{p.d, 0.5, K, g.search});
+        if (rec.field->sizes_from_field()) {
+          g.sizes = merge_fitted_levels(rec.sizes, p);
+          std::fprintf(stderr, "cells: the field model's optimal sizes (far from homogeneous: nu %.3g over the box, "
+                               "%.3g around the particles; docs/MODEL.md section 14)\n",
+                       rec.field->summary.box_nu, rec.field->summary.mean_nu);
+        }
+      }
+    }
   } else {
     throw InputError("sizes", "give --sizes s1,...,sL or --cells METHOD");
   }
