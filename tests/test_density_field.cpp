@@ -154,6 +154,39 @@ TEST(DensityField, RecommendCommandUsesTheFieldAndSaysSo) {
   EXPECT_NE(c.err.find("field model"), std::string::npos) << c.err;
 }
 
+// A run over several snapshots: the cost per particle over all of them,
+// each snapshot weighed by its particles (exactly the single snapshots'
+// costs averaged), within the target of what the grid counts over them.
+TEST(DensityField, SnapshotsOfARunAreAveragedPerParticle) {
+  const std::string bed = kBeds + "bed3d_o5_s1.dump";
+  const ParticleSet a = read_particles(bed, Isolation::none, 0), b = read_particles(bed, Isolation::none, 1);
+  DensityField both = field_of(a);
+  both.add_frame(b.positions, b.radii, FieldBox{b.d, *b.box, b.periodic_per_axis()});
+  EXPECT_EQ(both.frames(), 2u);
+  EXPECT_EQ(both.size(), a.size() + b.size());
+  const std::vector<double> sizes = recommend_for_field(both, ModelParams{3, 0.5, kK}).sizes;
+  const ModelParams mp{3, 0.5, kK};
+  const double na = double(a.size()), nb = double(b.size());
+  const double ta = field_of(a).evaluate(mp, sizes).model.T_over_N, tb = field_of(b).evaluate(mp, sizes).model.T_over_N;
+  const double predicted = both.evaluate(mp, sizes).model.T_over_N;
+  EXPECT_NEAR(predicted, (na * ta + nb * tb) / (na + nb), 1e-12 * predicted);
+  const double counted = (na * measured(to_packing(a, bed), sizes) + nb * measured(to_packing(b, bed), sizes)) / (na + nb);
+  EXPECT_NEAR(predicted, counted, kPredictionRelTol * counted);
+  // The command: --frames 0:1 gives these sizes; bad ranges name the field.
+  const Result r = hgrid_run("recommend " + bed + " --frames 0:1 --json", kNoCalibration);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["frames"], nlohmann::json({0, 1}));
+  EXPECT_EQ(j["n"].get<std::size_t>(), a.size() + b.size());
+  EXPECT_EQ(j["sizes"].get<std::vector<double>>(), sizes);
+  for (const char* bad : {"1:0", "0:5", "0-1", "x:1"}) {
+    const Result e = hgrid_run("recommend " + bed + " --frames " + bad, kNoCalibration);
+    EXPECT_EQ(e.status, 2) << bad;
+    EXPECT_EQ(e.err.rfind("hgrid: error: frames:", 0), 0u) << e.err;
+    EXPECT_TRUE(e.out.empty()) << bad;
+  }
+}
+
 // A homogeneous packing keeps the paper's sizes at the box's nu (the
 // figures' packings: their counts and model columns do not move).
 TEST(DensityField, HomogeneousFileKeepsTheBoxSizes) {

@@ -26,11 +26,12 @@ Recommendation recommend_cell_sizes(const std::vector<double>& radii, const Mode
   for (double& r : scaled) r /= out.r_min;
   const Empirical dist(std::move(scaled));
   const std::vector<double> unit_sizes =
-      time ? time_optimal_sizes(dist, p, time->coef, time->n).sizes
+      time ? time_optimal_sizes(dist, p, time->coef, time->n, time->box_volume / std::pow(out.r_min, p.d)).sizes
            : sizes_for_grid(choose_cell_sizes(dist, p, CellMethod::optimal).sizes, 2 * dist.r_max());
   if (time) {
-    out.seconds = predict_seconds(time->coef, expected_time_terms(dist, p, unit_sizes, time->n));
-    out.linked_cell_seconds = predict_seconds(time->coef, expected_time_terms(dist, p, {2 * dist.r_max()}, time->n));
+    const double v = time->box_volume / std::pow(out.r_min, p.d);  // in units of r_min, as dist
+    out.seconds = predict_seconds(time->coef, expected_time_terms(dist, p, unit_sizes, time->n, v));
+    out.linked_cell_seconds = predict_seconds(time->coef, expected_time_terms(dist, p, {2 * dist.r_max()}, time->n, v));
   }
   out.model = evaluate_model(dist, p, unit_sizes);
   out.linked_cell = evaluate_model(dist, p, {2 * dist.r_max()});
@@ -43,7 +44,8 @@ Recommendation recommend_cell_sizes(const std::vector<double>& radii, const Mode
 }
 
 Recommendation recommend_for_field(const DensityField& field, const ModelParams& p,
-                                   const std::optional<TimeModelUse>& time) {
+                                   std::optional<TimeModelUse> time) {
+  if (time) time->box_volume = field.volume();  // the grid lays out cells over the whole box
   const std::vector<double>& radii = field.radii();
   ModelParams q = p;
   q.d = field.d();
@@ -67,7 +69,7 @@ Recommendation recommend_for_field(const DensityField& field, const ModelParams&
     if (time) {
       ModelParams at = q;
       at.nu = nu_eff;
-      cost = predict_seconds(time->coef, expected_time_terms(Empirical(radii), at, r.sizes, time->n)).total();
+      cost = predict_seconds(time->coef, expected_time_terms(Empirical(radii), at, r.sizes, time->n, time->box_volume)).total();
     }
     if (cost < best.cost) best = Best{cost, std::move(r), std::move(fr.model), nu_eff};
   };
@@ -94,6 +96,12 @@ Recommendation recommend_for_field(const DensityField& field, const ModelParams&
     for (double x : ladder) {
       q.nu = x;
       consider(recommend_cell_sizes(radii, q, time));
+      if (time) consider(recommend_cell_sizes(radii, q));  // the count's optimum too: the time model judges
+    }
+    if (time) {  // and the linked cell
+      Recommendation lc = homogeneous;
+      lc.sizes = {homogeneous.linked_cell_size};
+      consider(std::move(lc));
     }
   }
   Recommendation out = std::move(best.r);
@@ -105,10 +113,11 @@ Recommendation recommend_for_field(const DensityField& field, const ModelParams&
   out.linked_cell.sizes = {out.linked_cell_size};
   if (time) {
     const Empirical dist(radii);
-    out.seconds = predict_seconds(time->coef, expected_time_terms(dist, q, out.sizes, time->n));
+    out.seconds = predict_seconds(time->coef, expected_time_terms(dist, q, out.sizes, time->n, field.volume()));
     ModelParams lc = q;
     lc.nu = std::clamp(lcf.effective_nu, 1e-6, 1.0);
-    out.linked_cell_seconds = predict_seconds(time->coef, expected_time_terms(dist, lc, {out.linked_cell_size}, time->n));
+    out.linked_cell_seconds =
+        predict_seconds(time->coef, expected_time_terms(dist, lc, {out.linked_cell_size}, time->n, field.volume()));
   }
   use.nu_effective = best.nu_eff;
   use.homogeneous_T_over_N = homogeneous.sizes == out.sizes

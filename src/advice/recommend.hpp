@@ -20,6 +20,7 @@ namespace hgrid {
 struct TimeModelUse {
   TimeCoefficients coef;
   double n = 0;
+  double box_volume = 0;  // > 0: the particles fill part of a larger box (expected_time_terms)
 };
 
 /// What a recommendation from positions used (recommend_for_field): the
@@ -80,7 +81,7 @@ Recommendation recommend_cell_sizes(const std::vector<double>& radii, const Mode
 /// homogeneous: the paper's optimum at the box's nu (recommend_cell_sizes).
 /// Either way the model in the result is the field model's; p.nu is not used.
 Recommendation recommend_for_field(const DensityField& field, const ModelParams& p,
-                                   const std::optional<TimeModelUse>& time = std::nullopt);
+                                   std::optional<TimeModelUse> time = std::nullopt);
 
 /// The density field of a file's particles (positions in an untilted box),
 /// or nothing when the file has no positions or box, or a tilted box.

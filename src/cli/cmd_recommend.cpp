@@ -22,6 +22,7 @@ namespace {
 struct RecommendOptions {
   std::string file, K, search = "topdown", cost = "auto";
   std::optional<std::int64_t> frame;
+  std::string frames;  // FIRST:LAST, the snapshots the sizes are chosen over
   std::optional<double> nu;
   std::optional<int> d;
   double skin = 0;
@@ -30,7 +31,8 @@ struct RecommendOptions {
 
 /// Every key of --json, for --help and docs/RECOMMEND.md.
 constexpr const char* kJsonKeys =
-    "--json keys: file, format (hdf5|table|lammps_data|lammps_dump|mercury_data|mercury_restart), n, d, r_min, r_max, omega (r_max/r_min), "
+    "--json keys: file, format (hdf5|table|lammps_data|lammps_dump|mercury_data|mercury_restart), frames ([first, last] "
+    "snapshot used), n (with --frames: particles over all snapshots), d, r_min, r_max, omega (r_max/r_min), "
     "nu (the homogeneous nu the sizes were chosen for: with a field, its effective nu), nu_source (field|box|given), field (null "
     "without positions: window, box_nu, mean_local_nu, effective_nu, empty_fraction, histogram (fraction of particles per local nu "
     "bin of 0.05), far_from_homogeneous, homogeneous_T_over_N (the box's nu at these sizes), homogeneous_sizes (what the box's nu "
@@ -58,9 +60,12 @@ std::string k_text(const KChoice& k) {
 }
 
 void print_text(const RecommendOptions& o, const ParticleSet& s, const FileInputs& in, const KChoice& k,
-                const Recommendation& r, Search search) {
+                const Recommendation& r, Search search, std::size_t first, std::size_t last) {
   const std::string snapshot =
-      s.frames > 1 ? ", snapshot " + std::to_string(s.frame) + " of " + std::to_string(s.frames) : std::string();
+      first != last ? ", snapshots " + std::to_string(first) + " to " + std::to_string(last) + " of " +
+                          std::to_string(s.frames) + " (particles counted in each)"
+      : s.frames > 1 ? ", snapshot " + std::to_string(s.frame) + " of " + std::to_string(s.frames)
+                     : std::string();
   std::printf("%s: %zu particles (%s, %dD%s), r_min = %g, r_max = %g (omega = %g)\n", o.file.c_str(), s.size(),
               to_string(s.format), in.d, snapshot.c_str(), r.r_min, r.r_max, r.r_max / r.r_min);
   if (r.field) {
@@ -120,10 +125,11 @@ void print_text(const RecommendOptions& o, const ParticleSet& s, const FileInput
 }
 
 void print_json(const RecommendOptions& o, const ParticleSet& s, const FileInputs& in, const KChoice& k,
-                const Recommendation& r, Search search) {
+                const Recommendation& r, Search search, std::size_t first, std::size_t last) {
   nlohmann::json j = nlohmann::json::parse(recommendation_json(r, k, search, o.skin));
   j["file"] = o.file;
   j["format"] = to_string(s.format);
+  j["frames"] = {first, last};
   j["n"] = s.size();
   j["d"] = in.d;
   j["nu"] = r.field ? r.field->nu_effective : in.nu;
@@ -138,7 +144,45 @@ void print_json(const RecommendOptions& o, const ParticleSet& s, const FileInput
 void run_recommend(const RecommendOptions& o) {
   if (!(std::isfinite(o.skin) && o.skin >= 0)) throw InputError("skin", "must be a finite number >= 0");
   const Search search = parse_search(o.search);
-  const ParticleSet s = read_particles(o.file, Isolation::child_process, o.frame);
+  std::optional<std::pair<std::int64_t, std::int64_t>> range;
+  if (!o.frames.empty()) {
+    if (o.frame) throw InputError("frames", "give --frame or --frames, not both");
+    if (o.nu || o.homogeneous) throw InputError("frames", "uses the particles' density field: not with --nu or --homogeneous");
+    const auto colon = o.frames.find(':');
+    std::int64_t a = 0, b = 0;
+    try {
+      if (colon == std::string::npos) throw std::invalid_argument("no colon");
+      std::size_t used_a = 0, used_b = 0;
+      a = std::stoll(o.frames.substr(0, colon), &used_a);
+      b = std::stoll(o.frames.substr(colon + 1), &used_b);
+      if (used_a != colon || used_b != o.frames.size() - colon - 1) throw std::invalid_argument("trailing");
+    } catch (const std::exception&) {
+      throw InputError("frames", "must be FIRST:LAST, two snapshot numbers (0, 1, ... or -1, -2, ... from the end); got '" +
+                                     o.frames + "'");
+    }
+    range.emplace(a, b);
+  }
+  ParticleSet s = read_particles(o.file, Isolation::child_process, range ? std::optional<std::int64_t>(range->first) : o.frame);
+  std::optional<DensityField> field = o.nu || o.homogeneous ? std::nullopt : density_field_of(s);
+  std::size_t first = s.frame, last = s.frame;
+  if (range) {
+    const auto absolute = [&](std::int64_t k) { return k < 0 ? std::int64_t(s.frames) + k : k; };
+    const std::int64_t a = absolute(range->first), b = absolute(range->second);
+    if (!(0 <= a && a <= b && b < std::int64_t(s.frames)))
+      throw InputError("frames", "must run forward within the file's " + std::to_string(s.frames) +
+                                     " snapshots (0.." + std::to_string(s.frames - 1) + ", or -" + std::to_string(s.frames) +
+                                     "..-1 from the end); got '" + o.frames + "'");
+    if (!field) throw InputError("frames", o.file + " has no positions in an untilted box: no density field to average");
+    first = std::size_t(a), last = std::size_t(b);
+    for (std::int64_t k = a + 1; k <= b; ++k) {
+      s = read_particles(o.file, Isolation::child_process, k);
+      const std::optional<DensityField> more = density_field_of(s);
+      if (!more || more->d() != field->d())
+        throw InputError("frames", "snapshot " + std::to_string(k) + " of " + o.file + " has no positions or another dimension");
+      field->add_frame(s.positions, s.radii, FieldBox{s.d, *s.box, s.periodic_per_axis()});
+    }
+    s.radii = field->radii();  // the sizes hold every snapshot's particles
+  }
   const FileInputs in = file_inputs(s, o.file, o.d, o.nu);
   const KChoice k = choose_K(o.K);
   // The time model: asked for, or by default when the calibration that gave
@@ -146,12 +190,11 @@ void run_recommend(const RecommendOptions& o) {
   const std::optional<TimeModelUse> time = choose_time_model(o.cost, k, in.d, double(s.size()));
   // Positions known and no --nu: the model over the particles' own density
   // field (docs/MODEL.md section 14).
-  const std::optional<DensityField> field = o.nu || o.homogeneous ? std::nullopt : density_field_of(s);
   Recommendation r = field ? recommend_for_field(*field, ModelParams{in.d, in.nu, k.K, search}, time)
                            : recommend_cell_sizes(s.radii, ModelParams{in.d, in.nu, k.K, search}, time);
   add_lammps_collections(r, s.radii, in.d, r.field ? r.field->nu_effective : in.nu);
-  if (o.json) print_json(o, s, in, k, r, search);
-  else print_text(o, s, in, k, r, search);
+  if (o.json) print_json(o, s, in, k, r, search, first, last);
+  else print_text(o, s, in, k, r, search, first, last);
 }
 
 }  // namespace
@@ -163,6 +206,9 @@ void register_recommend_commands(CLI::App& app) {
                   "particle file (HDF5, CSV/text, LAMMPS data or dump, MercuryDPM .data or .restart; docs/PARTICLE_FILES.md)")
       ->required();
   add_frame_option(sub, o->frame);
+  sub->add_option("--frames", o->frames,
+                  "FIRST:LAST: choose the sizes for a run over these snapshots of a dump (0, 1, ... or -1, -2, ... "
+                  "from the end; sizes are set once per run): the field model's cost per particle over all of them");
   sub->add_option("--nu", o->nu,
                   "packing fraction of a homogeneous packing (default: the particles' own density field when the file "
                   "has positions and an untilted box, else the box's; needed when it has none)");

@@ -138,47 +138,78 @@ int level_of(double r, const std::vector<double>& sizes) {
 
 DensityField::DensityField(std::span<const double> positions, std::span<const double> radii, const FieldBox& box,
                            const FieldOptions& opt)
-    : box_(box), opt_(opt), pos_(positions.begin(), positions.end()), radii_(radii.begin(), radii.end()) {
-  const int d = box.d;
-  if (d != 2 && d != 3) throw InputError("d", "must be 2 or 3 (got " + std::to_string(d) + ")");
-  if (radii_.empty()) throw InputError("radii", "no particles");
-  if (pos_.size() != radii_.size() * std::size_t(d))
-    throw InputError("positions", "must hold d = " + std::to_string(d) + " coordinates per radius");
+    : opt_(opt) {
   if (!(opt.bins_per_window >= 1 && std::isfinite(opt.bins_per_window)))
     throw InputError("bins_per_window", "must be finite and >= 1");
-  double volume = 1;
+  frames_.push_back(make_frame(positions, radii, box));
+  radii_ = frames_.back().radii;
+}
+
+void DensityField::add_frame(std::span<const double> positions, std::span<const double> radii, const FieldBox& box) {
+  if (box.d != d()) throw InputError("d", "every snapshot must have the dimension of the first");
+  frames_.push_back(make_frame(positions, radii, box));
+  radii_.insert(radii_.end(), radii.begin(), radii.end());
+}
+
+DensityField::Frame DensityField::make_frame(std::span<const double> positions, std::span<const double> radii,
+                                             const FieldBox& box) const {
+  const int d = box.d;
+  if (d != 2 && d != 3) throw InputError("d", "must be 2 or 3 (got " + std::to_string(d) + ")");
+  Frame f{box, std::vector<double>(positions.begin(), positions.end()), std::vector<double>(radii.begin(), radii.end()),
+          {}, 0, 1};
+  if (f.radii.empty()) throw InputError("radii", "no particles");
+  if (f.pos.size() != f.radii.size() * std::size_t(d))
+    throw InputError("positions", "must hold d = " + std::to_string(d) + " coordinates per radius");
   for (int k = 0; k < d; ++k) {
     if (!(std::isfinite(box.side[k]) && box.side[k] > 0)) throw InputError("box", "every side must be finite and > 0");
-    volume *= box.side[k];
+    f.volume *= box.side[k];
   }
-  double spheres = 0;
-  for (std::size_t i = 0; i < radii_.size(); ++i) {
-    if (!(std::isfinite(radii_[i]) && radii_[i] > 0)) throw InputError("radii", "every radius must be finite and > 0");
-    spheres += ball_volume(d, radii_[i]);
+  for (std::size_t i = 0; i < f.radii.size(); ++i) {
+    if (!(std::isfinite(f.radii[i]) && f.radii[i] > 0)) throw InputError("radii", "every radius must be finite and > 0");
+    f.spheres += ball_volume(d, f.radii[i]);
     for (int k = 0; k < d; ++k) {
-      double& x = pos_[i * d + k];
+      double& x = f.pos[i * d + k];
       if (!std::isfinite(x)) throw InputError("positions", "every coordinate must be finite");
       if (box.periodic[k]) x -= box.side[k] * std::floor(x / box.side[k]);
       else x = std::clamp(x, 0.0, box.side[k]);
     }
   }
-  box_nu_ = spheres / volume;
-  const std::size_t n = radii_.size(), stride = std::max<std::size_t>(1, (n + opt.max_samples - 1) / opt.max_samples);
-  for (std::size_t i = 0; i < n; i += stride) samples_.push_back(i);
+  const std::size_t n = f.radii.size(), stride = std::max<std::size_t>(1, (n + opt_.max_samples - 1) / opt_.max_samples);
+  for (std::size_t i = 0; i < n; i += stride) f.samples.push_back(i);
+  return f;
 }
 
-std::vector<double> DensityField::factors(const ModelParams& p, const std::vector<double>& sizes) const {
-  const int d = box_.d, L = static_cast<int>(sizes.size());
-  const Empirical dist(radii_);
+double DensityField::box_nu() const {
+  double spheres = 0, volume = 0;
+  for (const Frame& f : frames_) spheres += f.spheres, volume += f.volume;
+  return spheres / volume;
+}
+
+double DensityField::volume() const {
+  double v = 0;
+  for (const Frame& f : frames_) v += f.volume;
+  return v / double(frames_.size());
+}
+
+ModelResult DensityField::frame_model(const Frame& f, const ModelParams& p, const std::vector<double>& sizes) const {
   ModelParams mp = p;
-  mp.d = d;
-  mp.nu = std::min(1.0, box_nu_);
-  const ModelResult base = evaluate_model(dist, mp, sizes);
-  double volume = 1;
-  for (int k = 0; k < d; ++k) volume *= box_.side[k];
-  std::vector<int> level(radii_.size());
+  mp.d = f.box.d;
+  mp.nu = std::min(1.0, f.spheres / f.volume);
+  return evaluate_model(Empirical(f.radii), mp, sizes);
+}
+
+std::vector<double> DensityField::factors(const ModelParams& p, const std::vector<double>& sizes,
+                                          std::size_t frame) const {
+  const Frame& f = frames_.at(frame);
+  return frame_factors(f, frame_model(f, p, sizes), sizes);
+}
+
+std::vector<double> DensityField::frame_factors(const Frame& fr, const ModelResult& base,
+                                                const std::vector<double>& sizes) const {
+  const int d = fr.box.d, L = static_cast<int>(sizes.size());
+  std::vector<int> level(fr.radii.size());
   std::vector<double> count(L, 0.0);
-  for (std::size_t i = 0; i < radii_.size(); ++i) count[level[i] = level_of(radii_[i], sizes)] += 1;
+  for (std::size_t i = 0; i < fr.radii.size(); ++i) count[level[i] = level_of(fr.radii[i], sizes)] += 1;
   const double bin = 2 * sizes.front() / opt_.bins_per_window;
   std::vector<double> num(std::size_t(L) * L, 0.0), den(std::size_t(L) * L, 0.0);
   for (int j = 0; j < L; ++j) {
@@ -186,18 +217,18 @@ std::vector<double> DensityField::factors(const ModelParams& p, const std::vecto
     bool used = false;
     for (int h = 0; h < L; ++h) used |= base.T_cd_pair[std::size_t(h) * L + j] > 0;
     if (!used) continue;
-    Cumulative table(box_, bin, opt_.max_bins);
-    for (std::size_t i = 0; i < radii_.size(); ++i)
-      if (level[i] == j) table.add(&pos_[i * d], 1.0);
+    Cumulative table(fr.box, bin, opt_.max_bins);
+    for (std::size_t i = 0; i < fr.radii.size(); ++i)
+      if (level[i] == j) table.add(&fr.pos[i * d], 1.0);
     table.accumulate();
-    const double n_j = count[j] / volume;
-    for (std::size_t i : samples_) {
+    const double n_j = count[j] / fr.volume;
+    for (std::size_t i : fr.samples) {
       const int h = level[i];
       const std::size_t at = std::size_t(h) * L + j;
       if (!(base.T_cd_pair[at] > 0)) continue;
-      const double w = h == j ? 3 * sizes[j] : 2 * sizes[j] + 2 * radii_[i];
+      const double w = h == j ? 3 * sizes[j] : 2 * sizes[j] + 2 * fr.radii[i];
       double lo[3], hi[3];
-      for (int k = 0; k < d; ++k) lo[k] = pos_[i * d + k] - w / 2, hi[k] = pos_[i * d + k] + w / 2;
+      for (int k = 0; k < d; ++k) lo[k] = fr.pos[i * d + k] - w / 2, hi[k] = fr.pos[i * d + k] + w / 2;
       num[at] += table.sum(lo, hi) - (h == j ? 1.0 : 0.0);
       den[at] += n_j * std::pow(w, d);
     }
@@ -210,70 +241,96 @@ std::vector<double> DensityField::factors(const ModelParams& p, const std::vecto
 
 FieldResult DensityField::evaluate(const ModelParams& p, const std::vector<double>& sizes) const {
   const int L = static_cast<int>(sizes.size());
-  const Empirical dist(radii_);
-  ModelParams mp = p;
-  mp.d = box_.d;
-  mp.nu = std::min(1.0, box_nu_);
+  const double total = double(radii_.size());
   FieldResult out;
   ModelResult& r = out.model;
-  r = evaluate_model(dist, mp, sizes);
-  const std::vector<double> F = factors(p, sizes);
-  const double homogeneous = r.T_cd_over_N;
-  r.T_cd_over_N = 0;
-  for (int h = 0; h < L; ++h) {
-    r.T_cd[h] = 0;
-    for (int j = 0; j < L; ++j) {
-      double& t = r.T_cd_pair[std::size_t(h) * L + j];
-      t *= F[std::size_t(h) * L + j];
-      r.T_cd[h] += t;
+  for (const Frame& f : frames_) {
+    ModelResult m = frame_model(f, p, sizes);
+    const std::vector<double> F = frame_factors(f, m, sizes);
+    m.T_cd_over_N = 0;
+    for (int h = 0; h < L; ++h) {
+      m.T_cd[h] = 0;
+      for (int j = 0; j < L; ++j) {
+        double& t = m.T_cd_pair[std::size_t(h) * L + j];
+        t *= F[std::size_t(h) * L + j];
+        m.T_cd[h] += t;
+      }
+      m.T_cd_over_N += m.T_cd[h];
     }
-    r.T_cd_over_N += r.T_cd[h];
+    m.T_over_N = m.T_cd_over_N + p.K * m.T_ca_over_N;
+    // Per particle over all snapshots: each weighs by its particles.
+    const double w = double(f.radii.size()) / total;
+    if (frames_.size() == 1) {
+      r = std::move(m);
+      break;
+    }
+    if (r.sizes.empty()) {
+      r = m;
+      r.T_over_N = r.T_cd_over_N = r.T_ca_over_N = 0;
+      for (auto* v : {&r.P, &r.m, &r.T_cd, &r.T_ca, &r.T_cd_pair}) std::fill(v->begin(), v->end(), 0.0);
+    }
+    r.T_over_N += w * m.T_over_N;
+    r.T_cd_over_N += w * m.T_cd_over_N;
+    r.T_ca_over_N += w * m.T_ca_over_N;
+    for (std::size_t k = 0; k < r.P.size(); ++k) {
+      r.P[k] += w * m.P[k], r.m[k] += w * m.m[k], r.T_cd[k] += w * m.T_cd[k], r.T_ca[k] += w * m.T_ca[k];
+    }
+    for (std::size_t k = 0; k < r.T_cd_pair.size(); ++k) r.T_cd_pair[k] += w * m.T_cd_pair[k];
   }
-  r.T_over_N = r.T_cd_over_N + p.K * r.T_ca_over_N;
+  // The homogeneous nu with the same count: the paper's model for every
+  // radius at the snapshots' nu, scaled to the field's count.
+  ModelParams mp = p;
+  mp.d = d();
+  mp.nu = std::min(1.0, box_nu());
+  const double homogeneous = evaluate_model(Empirical(radii_), mp, sizes).T_cd_over_N;
   out.effective_nu = homogeneous > 0 ? mp.nu * r.T_cd_over_N / homogeneous : mp.nu;
   return out;
 }
 
 FieldSummary DensityField::summary(double window) const {
   if (!(window > 0 && std::isfinite(window))) throw InputError("window", "must be finite and > 0");
-  const int d = box_.d;
   FieldSummary s;
   s.window = window;
-  s.box_nu = box_nu_;
-  Cumulative table(box_, window / opt_.bins_per_window, opt_.max_bins);
-  for (std::size_t i = 0; i < radii_.size(); ++i) table.add(&pos_[i * d], ball_volume(d, radii_[i]));
-  table.accumulate();
-  for (std::size_t i : samples_) {
-    double lo[3], hi[3], wv = 1;
-    for (int k = 0; k < d; ++k) {
-      lo[k] = pos_[i * d + k] - window / 2, hi[k] = pos_[i * d + k] + window / 2;
-      // The particles' own density: the window's part inside a walled axis.
-      wv *= box_.periodic[k] ? window : std::min(hi[k], box_.side[k]) - std::max(lo[k], 0.0);
-    }
-    const double nu = std::max(0.0, table.sum(lo, hi) - ball_volume(d, radii_[i])) / wv;
-    s.mean_nu += nu;
-    const auto b = static_cast<std::size_t>(nu / FieldSummary::kHistogramBin);
-    if (s.histogram.size() <= b) s.histogram.resize(b + 1, 0.0);
-    s.histogram[b] += 1;
-  }
-  s.mean_nu /= double(samples_.size());
-  for (double& h : s.histogram) h /= double(samples_.size());
-  // Empty cells of side `window`: the box cut into whole cells per axis.
-  std::size_t cells = 1, n[3] = {1, 1, 1};
-  for (int k = 0; k < d; ++k) cells *= n[k] = std::max<std::size_t>(1, std::size_t(box_.side[k] / window));
-  if (cells <= opt_.max_bins) {
-    std::vector<unsigned char> full(cells, 0);
-    for (std::size_t i = 0; i < radii_.size(); ++i) {
-      std::size_t at = 0, stride = 1;
+  s.box_nu = box_nu();
+  std::size_t samples = 0;
+  for (const Frame& fr : frames_) {
+    const int d = fr.box.d;
+    Cumulative table(fr.box, window / opt_.bins_per_window, opt_.max_bins);
+    for (std::size_t i = 0; i < fr.radii.size(); ++i) table.add(&fr.pos[i * d], ball_volume(d, fr.radii[i]));
+    table.accumulate();
+    for (std::size_t i : fr.samples) {
+      double lo[3], hi[3], wv = 1;
       for (int k = 0; k < d; ++k) {
-        const auto c = std::min(n[k] - 1, std::size_t(pos_[i * d + k] / box_.side[k] * double(n[k])));
-        at += c * stride;
-        stride *= n[k];
+        lo[k] = fr.pos[i * d + k] - window / 2, hi[k] = fr.pos[i * d + k] + window / 2;
+        // The particles' own density: the window's part inside a walled axis.
+        wv *= fr.box.periodic[k] ? window : std::min(hi[k], fr.box.side[k]) - std::max(lo[k], 0.0);
       }
-      full[at] = 1;
+      const double nu = std::max(0.0, table.sum(lo, hi) - ball_volume(d, fr.radii[i])) / wv;
+      s.mean_nu += nu;
+      const auto b = static_cast<std::size_t>(nu / FieldSummary::kHistogramBin);
+      if (s.histogram.size() <= b) s.histogram.resize(b + 1, 0.0);
+      s.histogram[b] += 1;
+      ++samples;
     }
-    s.empty_fraction = 1.0 - double(std::count(full.begin(), full.end(), 1)) / double(cells);
+    // Empty cells of side `window`: the box cut into whole cells per axis.
+    std::size_t cells = 1, n[3] = {1, 1, 1};
+    for (int k = 0; k < d; ++k) cells *= n[k] = std::max<std::size_t>(1, std::size_t(fr.box.side[k] / window));
+    if (cells <= opt_.max_bins) {
+      std::vector<unsigned char> full(cells, 0);
+      for (std::size_t i = 0; i < fr.radii.size(); ++i) {
+        std::size_t at = 0, stride = 1;
+        for (int k = 0; k < d; ++k) {
+          const auto c = std::min(n[k] - 1, std::size_t(fr.pos[i * d + k] / fr.box.side[k] * double(n[k])));
+          at += c * stride;
+          stride *= n[k];
+        }
+        full[at] = 1;
+      }
+      s.empty_fraction += (1.0 - double(std::count(full.begin(), full.end(), 1)) / double(cells)) / double(frames_.size());
+    }
   }
+  s.mean_nu /= double(samples);
+  for (double& h : s.histogram) h /= double(samples);
   return s;
 }
 

@@ -76,37 +76,55 @@ struct FieldResult {
   double effective_nu = 0;  // the homogeneous nu with the same narrow-phase count: box nu x (T_cd / the box's T_cd)
 };
 
-/// A packing's positions and radii with its box, for the field model.
+/// A packing's positions and radii with its box, for the field model; or
+/// several snapshots of a run (add_frame), whose costs are averaged per
+/// particle (sizes are set once per run).
 /// positions: N x d, inside the box (wrapped on periodic axes); radii > 0.
 class DensityField {
  public:
   DensityField(std::span<const double> positions, std::span<const double> radii, const FieldBox& box,
                const FieldOptions& opt = {});
+  /// Another snapshot (the same d; its own particles and box).
+  void add_frame(std::span<const double> positions, std::span<const double> radii, const FieldBox& box);
 
-  int d() const { return box_.d; }
+  int d() const { return frames_.front().box.d; }
+  std::size_t frames() const { return frames_.size(); }
+  /// Particles over all snapshots.
   std::size_t size() const { return radii_.size(); }
-  const FieldBox& box() const { return box_; }
-  /// The particles' volume over the box's.
-  double box_nu() const { return box_nu_; }
-  /// The radii (the empirical distribution the model is evaluated for).
+  const FieldBox& box(std::size_t frame = 0) const { return frames_.at(frame).box; }
+  /// The particles' volume over the box's (over all snapshots).
+  double box_nu() const;
+  /// The box's volume (area in 2D), averaged over the snapshots.
+  double volume() const;
+  /// The radii of every snapshot (the distribution sizes are chosen for).
   const std::vector<double>& radii() const { return radii_; }
 
-  /// The field model for `sizes` (p.nu is ignored: the model's terms are
-  /// taken at the box's nu, and F rescales them).
+  /// The field model for `sizes` (p.nu is ignored: each snapshot's model
+  /// terms are taken at its box's nu, and F rescales them), per particle
+  /// over all snapshots.
   FieldResult evaluate(const ModelParams& p, const std::vector<double>& sizes) const;
-  /// F(h,j) of the last formula above, L x L ([h * L + j], 0 where the model
-  /// has no such pair) for `sizes`.
-  std::vector<double> factors(const ModelParams& p, const std::vector<double>& sizes) const;
+  /// F(h,j) of the last formula above for one snapshot, L x L ([h * L + j],
+  /// 0 where the model has no such pair).
+  std::vector<double> factors(const ModelParams& p, const std::vector<double>& sizes, std::size_t frame = 0) const;
 
-  /// The summary at one window side (e.g. the linked cell's scan, 3 x 2 r_max).
+  /// The summary at one window side (e.g. the linked cell's scan, 3 x 2 r_max),
+  /// over all snapshots.
   FieldSummary summary(double window) const;
 
  private:
-  FieldBox box_;
+  struct Frame {
+    FieldBox box;
+    std::vector<double> pos, radii;
+    std::vector<std::size_t> samples;
+    double spheres = 0, volume = 0;
+  };
+  Frame make_frame(std::span<const double> positions, std::span<const double> radii, const FieldBox& box) const;
+  ModelResult frame_model(const Frame& f, const ModelParams& p, const std::vector<double>& sizes) const;
+  std::vector<double> frame_factors(const Frame& f, const ModelResult& base, const std::vector<double>& sizes) const;
+
   FieldOptions opt_;
-  std::vector<double> pos_, radii_;
-  std::vector<std::size_t> samples_;
-  double box_nu_ = 0;
+  std::vector<Frame> frames_;
+  std::vector<double> radii_;
 };
 
 }  // namespace hgrid

@@ -87,7 +87,7 @@ TimeTerms counted_time_terms(const Counters& c, const BuildWork& b) {
 }
 
 TimeTerms expected_time_terms(const Distribution& dist, const ModelParams& p, const std::vector<double>& s,
-                              double n) {
+                              double n, double box_volume) {
   const ModelResult m = evaluate_model(dist, p, s);  // validates p and the sizes
   const int L = m.levels(), d = p.d;
   const bool td = p.search == Search::top_down;
@@ -97,16 +97,17 @@ TimeTerms expected_time_terms(const Distribution& dist, const ModelParams& p, co
   double checks = n * m.T_cd_over_N;
   const double half_stencil = d == 2 ? 4 : 13;  // (3^d - 1) / 2 neighbour cells
   std::vector<char> ranked(L);
-  std::vector<double> cells_of(L);  // box volume / s_h^d
+  std::vector<double> cells_of(L);  // filled volume / s_h^d
   for (int h = 0; h < L; ++h) cells_of[h] = n * vp / (p.nu * std::pow(s[h], d));
+  const double box_over_filled = box_volume > 0 ? std::max(1.0, box_volume * p.nu / (n * vp)) : 1.0;
   for (int h = 0; h < L; ++h) {
     const double nh = n * m.P[h];
-    const double cells = cells_of[h];
-    ranked[h] = cells <= kRankCellsPerParticle * nh + kRankMinCells;
+    const double cells = cells_of[h], laid_out = cells * box_over_filled;  // the build's cells: the whole box's
+    ranked[h] = laid_out <= kRankCellsPerParticle * nh + kRankMinCells;
     const double occupied = nh > 0 ? cells * -std::expm1(-nh / cells) : 0.0;  // Poisson occupancy
     t.occupied_cells += occupied;
     t.level_steps += h * nh;
-    const LevelSortWork sw = level_sort_work(static_cast<std::uint64_t>(std::max(1.0, cells)),
+    const LevelSortWork sw = level_sort_work(static_cast<std::uint64_t>(std::max(1.0, laid_out)),
                                              static_cast<std::uint64_t>(n));
     t.sort_passes += sw.passes * nh;
     t.bucket_passes += sw.passes * double(sw.buckets);
@@ -119,7 +120,7 @@ TimeTerms expected_time_terms(const Distribution& dist, const ModelParams& p, co
     // 1 - (1 - e^-m) / m on average over a Poisson cell.
     double run_checks = 0.5 * mh, runs = mh > 0 ? 1 + std::expm1(-mh) / mh : 0;
     if (ranked[h]) {
-      t.directory_words += std::floor(cells / kBitsPerWord) + 1;
+      t.directory_words += std::floor(laid_out / kBitsPerWord) + 1;
       run_checks += (half_stencil - 1) / 3 * run_part(3 * mh) + run_part(mh);
       runs += (half_stencil - 1) / 3 * run_prob(3 * mh) + run_prob(mh);
     } else {
@@ -179,13 +180,13 @@ TimeTerms expected_time_terms(const Distribution& dist, const ModelParams& p, co
 }
 
 TimeOptimalSizes time_optimal_sizes(const Distribution& dist, const ModelParams& p, const TimeCoefficients& c,
-                                    double n) {
+                                    double n, double box_volume) {
   const double top = 2.0 * dist.r_max(), bottom = 2.0 * dist.r_min();
   TimeOptimalSizes best;
   double best_seconds = std::numeric_limits<double>::infinity();
   const auto seconds = [&](const std::vector<double>& s) {
     ++best.evaluations;
-    return predict_seconds(c, expected_time_terms(dist, p, sizes_for_grid(s, top), n)).total();
+    return predict_seconds(c, expected_time_terms(dist, p, sizes_for_grid(s, top), n, box_volume)).total();
   };
   const int L_star = choose_cell_sizes(dist, p, CellMethod::optimal).levels;
   for (int L = 1; L <= L_star + kExtraLevels; ++L) {
@@ -197,7 +198,7 @@ TimeOptimalSizes time_optimal_sizes(const Distribution& dist, const ModelParams&
       best.sizes = sizes_for_grid(s, top);
     }
   }
-  best.seconds = predict_seconds(c, expected_time_terms(dist, p, best.sizes, n));
+  best.seconds = predict_seconds(c, expected_time_terms(dist, p, best.sizes, n, box_volume));
   return best;
 }
 

@@ -80,20 +80,25 @@ TimeTerms counted_time_terms(const Counters& c, const BuildWork& b);
 /// (Eq. 16 with one axis fewer), and the scan where the expected box b(j,h)
 /// holds more cells than level j holds particles (as the grid decides per box);
 /// contacts from the overlap volume, n^2 v_d E[(r_i + r_j)^d] / (2 V).
+/// box_volume > 0: the particles fill n V_p / nu of a larger box (a bed
+/// under empty space; docs/MODEL.md section 14): the cells the build lays
+/// out, clears and sorts into (directories, ranked or hashed levels, radix
+/// buckets) are the whole box's, the occupancy that of the filled part.
 TimeTerms expected_time_terms(const Distribution& dist, const ModelParams& p, const std::vector<double>& sizes,
-                              double n);
+                              double n, double box_volume = 0);
 
 /// Cell sizes that minimise the predicted seconds of one build + query for
 /// n particles: for each L from 1 to the count optimum's L* + 3 (at the K
 /// given in p), a coordinate search in ln s_h (steps x1.25, x1.1, x1.03,
 /// order kept, s_L = 2 r_max) from the count optimum at that L; the best
 /// over L. Returns sizes ready for the grid (collapsed levels merged).
+/// box_volume: as expected_time_terms.
 struct TimeOptimalSizes {
   std::vector<double> sizes;
   PredictedSeconds seconds;
   int evaluations = 0;
 };
 TimeOptimalSizes time_optimal_sizes(const Distribution& dist, const ModelParams& p, const TimeCoefficients& c,
-                                    double n);
+                                    double n, double box_volume = 0);
 
 }  // namespace hgrid
