@@ -254,7 +254,7 @@ class PyContactList {
       py::gil_scoped_release release;
       std::visit(
           [&](auto& l) {
-            if (radii && (auto_sizes_ || auto_skin_)) first_choices(l, r);
+            if (radii && (auto_sizes_ || auto_skin_)) first_choices(l, x, r);
             rebuilt = l.update(x, r);
             if (auto_skin_ && rebuilt) tune_skin(l, r);
           },
@@ -374,17 +374,30 @@ class PyContactList {
     return v / volume_;
   }
 
-  /// sizes="auto": the cost model's sizes for the first radii at their
-  /// packing fraction (K as `hgrid recommend`); skin="auto": a first skin of
-  /// a tenth of the mean diameter, tuned from the builds on.
+  /// sizes="auto": the sizes `hgrid recommend` gives the first positions and
+  /// radii (their density field in an untilted box, else their packing
+  /// fraction; K as `hgrid recommend`); skin="auto": a first skin of a tenth
+  /// of the mean diameter, tuned from the builds on.
   template <class L>
-  void first_choices(L& l, std::span<const double> r) {
+  void first_choices(L& l, std::span<const double> x, std::span<const double> r) {
     if (r.empty()) return;
     const double nu = std::min(packing_fraction(r), 0.99);
     if (auto_sizes_ && !sized_once_) {  // once: new sizes would mean a new grid
       sized_once_ = true;
       const std::vector<double> radii(r.begin(), r.end());
-      l.set_sizes(recommend_cell_sizes(radii, ModelParams{d_, nu, choose_K("").K, Search::top_down}).sizes);
+      const ModelParams mp{d_, nu, choose_K("").K, Search::top_down};
+      const auto& box = l.box();
+      if (!box.triclinic) {
+        FieldBox fb{d_, {}, {}};
+        std::vector<double> rel(x.begin(), x.end());
+        for (int a = 0; a < d_; ++a) {
+          fb.side[a] = box.side[a], fb.periodic[a] = box.periodic[a];
+          for (std::size_t i = 0; i < r.size(); ++i) rel[i * d_ + a] -= box.origin[a];
+        }
+        l.set_sizes(recommend_for_field(DensityField(rel, radii, fb), mp).sizes);
+      } else {
+        l.set_sizes(recommend_cell_sizes(radii, mp).sizes);
+      }
     }
     if (auto_skin_ && !tuned_once_) {
       double mean = 0;

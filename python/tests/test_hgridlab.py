@@ -68,7 +68,7 @@ def test_recommend_matches_the_command(tmp_path):
                          check=True, capture_output=True, text=True).stdout
     j = json.loads(out)
     assert j["sizes"] == pytest.approx(r["sizes"], rel=SAME_SIZES_REL_TOL)
-    assert set(r) == set(j) - {"file", "format", "n", "nu_source", "box", "tilt", "boundary"}
+    assert set(r) == set(j) - {"file", "format", "frames", "n", "nu_source", "box", "tilt", "boundary"}
     assert hgridlab.recommend(radii, 0.6, 3, K=0.8)["K_source"] == "given"
 
 
