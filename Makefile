@@ -1,11 +1,12 @@
 # hgridlab front door. `make` builds, `make test` runs the tests,
-# `make figures` draws the paper's figures, `make bench` runs the benchmarks.
+# `make figures` draws the paper's figures, `make bench` runs the benchmarks,
+# `make docs` the API reference (build/docs/html).
 BUILD ?= build
 JOBS  ?= $(shell nproc 2>/dev/null || echo 2)
 SCALE ?= default
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release
 
-.PHONY: all build test test-python-install test-asan test-clang test-sanitize fuzz figures bench mercurydpm deps clean calibrate calibrate-figure
+.PHONY: all build docs test test-python-install test-asan test-clang test-sanitize fuzz figures bench mercurydpm deps clean calibrate calibrate-figure
 
 all: build
 
@@ -112,6 +113,13 @@ bench: build
 mercurydpm: build
 	bash bench/mercurydpm/build.sh
 	python3 bench/mercurydpm/compare.py --hgrid $(BUILD)/hgrid --scale $(or $(SCALE),default)
+
+# The API reference from the public headers' comments (Doxygen); a warning fails it.
+docs:
+	@command -v doxygen >/dev/null || { echo "make docs: doxygen not found (apt-get install doxygen)" >&2; exit 2; }
+	@mkdir -p $(BUILD)/docs
+	HGRID_DOCS_OUT=$(BUILD)/docs doxygen docs/Doxyfile
+	@echo "API reference: $(BUILD)/docs/html/index.html"
 
 clean:
 	rm -rf $(BUILD) build-asan build-clang build-fuzz build-sanitize

@@ -2,7 +2,7 @@
 # Installs hgridlab's Debian packages when any is missing. As root, missing
 # packages are installed (apt-get). As a normal user, a missing required
 # package stops with the apt-get line to run; a missing optional one (LAMMPS,
-# CGAL, Embree, Bullet, MPI, jq) is skipped with a message. Extra packages may
+# CGAL, Embree, Bullet, MPI, jq, doxygen) is skipped with a message. Extra packages may
 # be named as arguments (CI: `bash .ci/deps.sh clang`); they count as required.
 set -euo pipefail
 required=("$@"
@@ -11,6 +11,7 @@ required=("$@"
       pybind11-dev python3-dev python3-numpy python3-pytest
       python3-setuptools python3-pybind11 python3-build python3-venv)  # pip install . (tests/python_install.sh)
 optional=(jq          # plots/calibration.sh (make calibrate-figure) reads the tool's JSON
+          doxygen     # make docs: the API reference (its test, Layout.ApiReference)
           lammps      # bench/peers at run time
           libcgal-dev libembree-dev libbullet-dev  # bench/peers at build time
           libopenmpi-dev openmpi-bin)  # hgrid under mpirun/srun, and its tests

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The recommendation on poured beds against the best of a scan (issue 88;
+"""The recommendation on poured beds against the best of a scan (the field model,
 docs/MODEL.md section 14).
 
 For every bed and frame: the counted T/N of the sizes `hgrid recommend`

@@ -59,7 +59,7 @@ void run(benchmark::State& state, double alpha, double omega, Placement placemen
 /// range(0), on range(1) threads; Metropolis moves or event chains (one
 /// thread; gen_event_chain.hpp). Counters: sweeps per second and particle
 /// moves (Metropolis trials, or chain events) per second and thread. One run
-/// of the binary times both kinds (issue 56's A/B); what a sweep of each
+/// of the binary times both kinds (an A/B of the two move kinds); what a sweep of each
 /// buys is in docs/MODEL.md section 8 (event chains relax the large
 /// particles in tens of sweeps where Metropolis moves take thousands).
 void monte_carlo(benchmark::State& state, EquilibrationMoves moves, OverlapSearch search = OverlapSearch::lists) {

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The wall time of `hgrid run` on P cores, projected from one run's
-per-point times (issue 56, item 4).
+per-point times (how much more cores would shorten `make figures SCALE=paper`).
 
   python3 bench/pool_projection.py results/fig11-paper.csv results/fig12-paper.csv \
           results/occupancy-paper.csv --cores 2 16 64

@@ -2,7 +2,7 @@
 """Replays the stationarity test (src/packing/detail/gen_stationary.cpp) on
 the T/N series that long equilibrations record, at several floors, and
 prints a markdown table: where the test passes at each floor and T/N there
-against the same chain's mean over its last fifth (issue 56: the
+against the same chain's mean over its last fifth (the choice of the
 Metropolis moves' floor, paper_figs/metropolis-floor.md).
 
 Make the runs first, each to its cap with a test that cannot pass, so that

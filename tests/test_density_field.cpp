@@ -21,7 +21,7 @@ namespace {
 const std::string kBeds = std::string(HGRID_SOURCE_DIR) + "/tests/data/beds/";
 const std::string kNoCalibration = "HGRID_CALIBRATION=/nonexistent/calibration.json";
 
-/// Issue 88's targets, with no calibration: the recommended sizes measure
+/// The targets on poured beds, with no calibration: the recommended sizes measure
 /// within this of the best of the scan ...
 constexpr double kBestOfScanRelTol = 0.05;
 /// ... and the field model's T/N is within this of what they measure.
@@ -86,7 +86,7 @@ TEST(DensityField, PredictionHoldsWhenTheBinsAreHalvedOrDoubled) {
   }
 }
 
-// Issue 88's "done when", counted (machine-independent): on poured beds,
+// Counted (machine-independent): on poured beds,
 // settled and in progress, 2D and 3D, the recommended sizes measure within
 // 5 % of the best of the scan and the field model predicts within 10 %.
 TEST(DensityField, RecommendationOnPouredBedsIsNearTheBestOfTheScan) {

@@ -77,7 +77,7 @@ BEDS = os.path.join(os.path.dirname(__file__), "..", "..", "tests", "data", "bed
 
 @pytest.mark.parametrize("name", ["bed3d_o5_s1.dump", "bed2d_o10_s2.dump"])
 def test_recommend_from_positions_takes_the_density_field(name):
-    # A bed LAMMPS poured under a tall empty box (issue 88): the box's nu
+    # A bed LAMMPS poured under a tall empty box: the box's nu
     # predicts half the work; the field model predicts what the grid counts.
     p = hgridlab.read_packing(os.path.join(BEDS, name))
     d, periodic = p["d"], p["boundary"] == "periodic"

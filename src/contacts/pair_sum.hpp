@@ -43,8 +43,8 @@ class PairSum {
   void gather(const std::vector<std::vector<std::uint64_t>>& lists);
 
   /// Takes pairs already in canonical order as compressed rows (the
-  /// partners j > i of particle i ascending, partners[start[i]] ..
-  /// partners[start[i + 1] - 1]; a ContactList's contacts), to be summed
+  /// partners j > i of particle i ascending, `partners[start[i]]` to
+  /// `partners[start[i + 1] - 1]`; a ContactList's contacts), to be summed
   /// on `threads` ranges of particles (0 = all) cut where the pairs before
   /// the cut reach each range's share. No sort.
   void assign_rows(std::span<const std::uint32_t> start, std::span<const std::uint32_t> partners, int threads);

@@ -12,7 +12,7 @@ using DimTag = std::integral_constant<int, D>;
 template <Boundary B>
 using BoundaryTag = std::integral_constant<Boundary, B>;
 
-/// Calls fn(DimTag<D>{}, BoundaryTag<B>{}) for the runtime d and boundary.
+/// Calls `fn(DimTag<D>{}, BoundaryTag<B>{})` for the runtime d and boundary.
 template <class Fn>
 decltype(auto) dispatch(int d, Boundary b, Fn&& fn) {
   if (d == 2) {

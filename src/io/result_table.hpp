@@ -34,8 +34,8 @@ struct ResultTable {
   int csv_precision = 17;             // significant digits of the CSV's numbers (NaN is written "NaN")
 };
 
-/// Writes <stem>.h5 (columns marked h5 as datasets, then the arrays, then the
-/// attributes) and <stem>.csv (comments, header, one line per row), each
+/// Writes `<stem>.h5` (columns marked h5 as datasets, then the arrays, then the
+/// attributes) and `<stem>.csv` (comments, header, one line per row), each
 /// through a temporary file: a failure leaves neither partly written.
 /// Columns of unequal length throw std::invalid_argument before anything is written.
 void write_result_table(const std::string& stem, const ResultTable& table);

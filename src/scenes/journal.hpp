@@ -11,8 +11,8 @@
 
 namespace hgrid {
 
-/// <stem>.journal.jsonl for rank 0 (and a run without MPI),
-/// <stem>.journal.rank<r>.jsonl for rank r > 0.
+/// `<stem>.journal.jsonl` for rank 0 (and a run without MPI),
+/// `<stem>.journal.rank<r>.jsonl` for rank r > 0.
 std::string journal_path(const std::string& stem, int rank = 0);
 
 /// Every journal file of the stem that exists, rank 0's first.

@@ -16,8 +16,8 @@ std::string result_json_line(const PointResult& r);
 /// the scene's).
 PointResult result_from_json_line(const std::string& line, double K);
 
-/// Writes <stem>.h5 (raw counts per point and level, model values, the
-/// parameters, seeds, scene text, git hash, compiler, timings) and <stem>.csv
+/// Writes `<stem>.h5` (raw counts per point and level, model values, the
+/// parameters, seeds, scene text, git hash, compiler, timings) and `<stem>.csv`
 /// (one row per point, named columns for gnuplot); both atomically.
 void write_results(const std::string& stem, const Scene& scene, const std::vector<PointResult>& results);
 

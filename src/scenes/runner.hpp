@@ -40,7 +40,7 @@ PointResult run_point(const Scene& scene, const ScenePoint& point, const RunOpti
 /// are the slow ones).
 double estimated_work(const PackingSpec& s);
 
-/// Runs every point of the scene and writes <results_dir>/<name>[-<scale>].h5
+/// Runs every point of the scene and writes `<results_dir>/<name>[-<scale>].h5`
 /// and .csv (the default scale has no suffix). Points already measured by an
 /// interrupted run of the same scene and scale (on any number of MPI ranks)
 /// are reused from its journals (scenes/journal.hpp).

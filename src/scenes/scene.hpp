@@ -50,7 +50,7 @@ std::string describe_point(const Scene& scene, std::size_t i);
 std::string scene_kind(const std::string& path);
 
 /// Reads a scene for one scale ("smoke", "default", "paper"): the base
-/// [packings] table with [scale.<name>.packings] keys replacing it. Unknown
+/// packings table with the keys of the table scale.NAME.packings replacing it. Unknown
 /// keys and out-of-range values throw InputError naming the key.
 Scene load_scene(const std::string& path, const std::string& scale);
 
