@@ -2,7 +2,8 @@
 # The include order of the stages: a file below src/<stage>/ includes only
 # from its own stage and the stages before it (base, grid, domain, contacts,
 # model, packing, io, measure, dpm, calibration, advice, scenes, mpi); another stage's
-# detail/ is never included. Usage: check_includes.sh SRC_ROOT
+# detail/ is never included; examples/ include installed public headers
+# only. Usage: check_includes.sh SRC_ROOT
 set -euo pipefail
 root="${1:-.}"
 stages=(base grid domain contacts model packing io measure dpm calibration advice scenes mpi)
@@ -45,5 +46,16 @@ while IFS= read -r -d '' f; do
     echo "$f: includes a stage's internal header"; bad=1
   fi
 done < <(find "$root/src/cli" "$root/bench" -maxdepth 1 -name '*.[ch]pp' -print0)
+# The examples are what a user writes: installed public headers only, as
+# <hgridlab/...> (no quoted project paths, no detail/).
+while IFS= read -r -d '' f; do
+  while IFS= read -r inc; do
+    case "$inc" in
+      \<hgridlab/*/detail/*) echo "$f: includes $inc, an internal header"; bad=1 ;;
+      \<hgridlab/*) ;;
+      \"*) echo "$f: includes $inc: examples include installed headers, <hgridlab/...>"; bad=1 ;;
+    esac
+  done < <(sed -n 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*\([<"][^>"]*[>"]\).*/\1/p' "$f")
+done < <(find "$root/examples" -name '*.[ch]pp' -print0)
 if [ "$bad" -ne 0 ]; then echo "include order: FAILED"; exit 1; fi
 echo "include order: OK (${stages[*]})"

@@ -1,6 +1,7 @@
 # Builds and runs the consumer project in WORK. MODE=find_package installs the
 # hgridlab build in HGRID_BUILD to WORK/prefix first; MODE=add_subdirectory
-# hands the consumer the source tree HGRID_SOURCE.
+# hands the consumer the source tree HGRID_SOURCE; MODE=examples builds and
+# runs examples/ against the installed package.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 function(run)
@@ -20,6 +21,23 @@ if(MODE MATCHES "^find_package")
   list(APPEND config -DCMAKE_PREFIX_PATH=${WORK}/prefix)
 else()
   list(APPEND config -DHGRID_SOURCE=${HGRID_SOURCE})
+endif()
+if(MODE STREQUAL "examples_subdirectory")  # examples/subdirectory: the source tree added, heavy packages hidden
+  foreach(p GSL HDF5 CLI11 nlohmann_json tomlplusplus)
+    list(APPEND ARGS -DCMAKE_DISABLE_FIND_PACKAGE_${p}=ON)
+  endforeach()
+  run(${CMAKE_COMMAND} -S ${HGRID_SOURCE}/examples/subdirectory -B ${WORK}/build ${ARGS})
+  run(${CMAKE_COMMAND} --build ${WORK}/build -j 2)
+  run(${WORK}/build/contact_list_steps)
+  return()
+endif()
+if(MODE STREQUAL "examples")  # examples/ as a user builds it, against the installed package
+  run(${CMAKE_COMMAND} --install ${HGRID_BUILD} --prefix ${WORK}/prefix)
+  run(${CMAKE_COMMAND} -S ${HGRID_SOURCE}/examples -B ${WORK}/build ${ARGS} -DCMAKE_PREFIX_PATH=${WORK}/prefix)
+  run(${CMAKE_COMMAND} --build ${WORK}/build -j 2)
+  run(${WORK}/build/contact_list_steps)
+  run(${WORK}/build/recommend_sizes ${HGRID_SOURCE}/tests/data/beds/bed3d_o5_s1.dump)
+  return()
 endif()
 run(${CMAKE_COMMAND} -S ${CMAKE_CURRENT_LIST_DIR} -B ${WORK}/build ${config})
 run(${CMAKE_COMMAND} --build ${WORK}/build -j 2)
