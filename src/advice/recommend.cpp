@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "hgridlab/calibration/calibration.hpp"
 #include "hgridlab/advice/lammps_fit.hpp"
@@ -13,18 +14,34 @@
 
 namespace hgrid {
 
-Recommendation recommend_cell_sizes(const std::vector<double>& radii, const ModelParams& p,
-                                    const std::optional<TimeModelUse>& time) {
-  validate(p);
+namespace {
+
+/// The radii in units of r_min (sorted once; recommend_in_units).
+struct UnitRadii {
+  double r_min = 0, r_max = 0;
+  std::shared_ptr<const Empirical> dist;
+};
+
+UnitRadii unit_radii(const std::vector<double>& radii) {
   if (radii.empty()) throw InputError("radii", "no particles to choose cell sizes for");
   for (double r : radii)
     if (!(std::isfinite(r) && r > 0)) throw InputError("radii", "every radius must be finite and > 0 (got " + format_number(r) + ")");
-  Recommendation out;
-  out.r_min = *std::min_element(radii.begin(), radii.end());
-  out.r_max = *std::max_element(radii.begin(), radii.end());
+  UnitRadii u;
+  u.r_min = *std::min_element(radii.begin(), radii.end());
+  u.r_max = *std::max_element(radii.begin(), radii.end());
   std::vector<double> scaled(radii);
-  for (double& r : scaled) r /= out.r_min;
-  const Empirical dist(std::move(scaled));
+  for (double& r : scaled) r /= u.r_min;
+  u.dist = std::make_shared<const Empirical>(std::move(scaled));
+  return u;
+}
+
+/// recommend_cell_sizes on radii already in units of r_min.
+Recommendation recommend_in_units(const UnitRadii& u, const ModelParams& p, const std::optional<TimeModelUse>& time) {
+  validate(p);
+  Recommendation out;
+  out.r_min = u.r_min;
+  out.r_max = u.r_max;
+  const Empirical& dist = *u.dist;
   const std::vector<double> unit_sizes =
       time ? time_optimal_sizes(dist, p, time->coef, time->n, time->box_volume / std::pow(out.r_min, p.d)).sizes
            : sizes_for_grid(choose_cell_sizes(dist, p, CellMethod::optimal).sizes, 2 * dist.r_max());
@@ -43,6 +60,14 @@ Recommendation recommend_cell_sizes(const std::vector<double>& radii, const Mode
   return out;
 }
 
+}  // namespace
+
+Recommendation recommend_cell_sizes(const std::vector<double>& radii, const ModelParams& p,
+                                    const std::optional<TimeModelUse>& time) {
+  validate(p);
+  return recommend_in_units(unit_radii(radii), p, time);
+}
+
 Recommendation recommend_for_field(const DensityField& field, const ModelParams& p,
                                    std::optional<TimeModelUse> time) {
   if (time) time->box_volume = field.volume();  // the grid lays out cells over the whole box
@@ -51,7 +76,9 @@ Recommendation recommend_for_field(const DensityField& field, const ModelParams&
   q.d = field.d();
   q.nu = std::min(1.0, field.box_nu());
   validate(q);
-  const Recommendation homogeneous = recommend_cell_sizes(radii, q, time);
+  const UnitRadii unit = unit_radii(radii);
+  const Empirical dist(radii);  // in the radii's unit (the field's and the time model's sizes)
+  const Recommendation homogeneous = recommend_in_units(unit, q, time);
   const double window = 3 * 2 * homogeneous.r_max;
   FieldUse use;
   use.summary = field.summary(window);
@@ -69,7 +96,7 @@ Recommendation recommend_for_field(const DensityField& field, const ModelParams&
     if (time) {
       ModelParams at = q;
       at.nu = nu_eff;
-      cost = predict_seconds(time->coef, expected_time_terms(Empirical(radii), at, r.sizes, time->n, time->box_volume)).total();
+      cost = predict_seconds(time->coef, expected_time_terms(dist, at, r.sizes, time->n, time->box_volume)).total();
     }
     if (cost < best.cost) best = Best{cost, std::move(r), std::move(fr.model), nu_eff};
   };
@@ -87,7 +114,7 @@ Recommendation recommend_for_field(const DensityField& field, const ModelParams&
     for (int it = 0; it < 4; ++it) {
       q.nu = nu;
       const double next =
-          std::clamp(field.evaluate(q, recommend_cell_sizes(radii, q, time).sizes).effective_nu, 0.01, 0.75);
+          std::clamp(field.evaluate(q, recommend_in_units(unit, q, time).sizes).effective_nu, 0.01, 0.75);
       const bool settled = std::abs(next - nu) < 0.005;
       nu = next;
       if (settled) break;
@@ -95,8 +122,8 @@ Recommendation recommend_for_field(const DensityField& field, const ModelParams&
     ladder.push_back(nu);
     for (double x : ladder) {
       q.nu = x;
-      consider(recommend_cell_sizes(radii, q, time));
-      if (time) consider(recommend_cell_sizes(radii, q));  // the count's optimum too: the time model judges
+      consider(recommend_in_units(unit, q, time));
+      if (time) consider(recommend_in_units(unit, q, std::nullopt));  // the count's optimum too: the time model judges
     }
     if (time) {  // and the linked cell
       Recommendation lc = homogeneous;
@@ -112,7 +139,6 @@ Recommendation recommend_for_field(const DensityField& field, const ModelParams&
   out.linked_cell = lcf.model;
   out.linked_cell.sizes = {out.linked_cell_size};
   if (time) {
-    const Empirical dist(radii);
     out.seconds = predict_seconds(time->coef, expected_time_terms(dist, q, out.sizes, time->n, field.volume()));
     ModelParams lc = q;
     lc.nu = std::clamp(lcf.effective_nu, 1e-6, 1.0);
@@ -122,7 +148,7 @@ Recommendation recommend_for_field(const DensityField& field, const ModelParams&
   use.nu_effective = best.nu_eff;
   use.homogeneous_T_over_N = homogeneous.sizes == out.sizes
                                  ? homogeneous.model.T_over_N
-                                 : evaluate_model(Empirical(radii), ModelParams{field.d(), std::min(1.0, field.box_nu()), p.K, p.search}, out.sizes).T_over_N;
+                                 : evaluate_model(dist, ModelParams{field.d(), std::min(1.0, field.box_nu()), p.K, p.search}, out.sizes).T_over_N;
   use.homogeneous_sizes_T_over_N = field.evaluate(q, homogeneous.sizes).model.T_over_N;
   out.field = std::move(use);
   return out;

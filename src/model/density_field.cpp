@@ -32,6 +32,9 @@ class Cumulative {
     c_.assign(stride, 0.0);
   }
 
+  /// Every weight back to 0 (the layout kept: no allocation).
+  void clear() { std::fill(c_.begin(), c_.end(), 0.0); }
+
   void add(const double* x, double w) {
     std::size_t at = 0;
     for (int k = 0; k < box_.d; ++k) {
@@ -143,12 +146,14 @@ DensityField::DensityField(std::span<const double> positions, std::span<const do
     throw InputError("bins_per_window", "must be finite and >= 1");
   frames_.push_back(make_frame(positions, radii, box));
   radii_ = frames_.back().radii;
+  all_ = frames_.back().dist;
 }
 
 void DensityField::add_frame(std::span<const double> positions, std::span<const double> radii, const FieldBox& box) {
   if (box.d != d()) throw InputError("d", "every snapshot must have the dimension of the first");
   frames_.push_back(make_frame(positions, radii, box));
   radii_.insert(radii_.end(), radii.begin(), radii.end());
+  all_ = std::make_shared<const Empirical>(radii_);
 }
 
 DensityField::Frame DensityField::make_frame(std::span<const double> positions, std::span<const double> radii,
@@ -176,6 +181,7 @@ DensityField::Frame DensityField::make_frame(std::span<const double> positions, 
   }
   const std::size_t n = f.radii.size(), stride = std::max<std::size_t>(1, (n + opt_.max_samples - 1) / opt_.max_samples);
   for (std::size_t i = 0; i < n; i += stride) f.samples.push_back(i);
+  f.dist = std::make_shared<const Empirical>(f.radii);
   return f;
 }
 
@@ -195,7 +201,7 @@ ModelResult DensityField::frame_model(const Frame& f, const ModelParams& p, cons
   ModelParams mp = p;
   mp.d = f.box.d;
   mp.nu = std::min(1.0, f.spheres / f.volume);
-  return evaluate_model(Empirical(f.radii), mp, sizes);
+  return evaluate_model(*f.dist, mp, sizes);
 }
 
 std::vector<double> DensityField::factors(const ModelParams& p, const std::vector<double>& sizes,
@@ -209,17 +215,21 @@ std::vector<double> DensityField::frame_factors(const Frame& fr, const ModelResu
   const int d = fr.box.d, L = static_cast<int>(sizes.size());
   std::vector<int> level(fr.radii.size());
   std::vector<double> count(L, 0.0);
-  for (std::size_t i = 0; i < fr.radii.size(); ++i) count[level[i] = level_of(fr.radii[i], sizes)] += 1;
+  std::vector<std::vector<std::size_t>> members(L);
+  for (std::size_t i = 0; i < fr.radii.size(); ++i) {
+    count[level[i] = level_of(fr.radii[i], sizes)] += 1;
+    members[level[i]].push_back(i);
+  }
   const double bin = 2 * sizes.front() / opt_.bins_per_window;
   std::vector<double> num(std::size_t(L) * L, 0.0), den(std::size_t(L) * L, 0.0);
+  Cumulative table(fr.box, bin, opt_.max_bins);  // one table, refilled per level
   for (int j = 0; j < L; ++j) {
     if (count[j] == 0) continue;
     bool used = false;
     for (int h = 0; h < L; ++h) used |= base.T_cd_pair[std::size_t(h) * L + j] > 0;
     if (!used) continue;
-    Cumulative table(fr.box, bin, opt_.max_bins);
-    for (std::size_t i = 0; i < fr.radii.size(); ++i)
-      if (level[i] == j) table.add(&fr.pos[i * d], 1.0);
+    table.clear();
+    for (std::size_t i : members[j]) table.add(&fr.pos[i * d], 1.0);
     table.accumulate();
     const double n_j = count[j] / fr.volume;
     for (std::size_t i : fr.samples) {
@@ -282,7 +292,7 @@ FieldResult DensityField::evaluate(const ModelParams& p, const std::vector<doubl
   ModelParams mp = p;
   mp.d = d();
   mp.nu = std::min(1.0, box_nu());
-  const double homogeneous = evaluate_model(Empirical(radii_), mp, sizes).T_cd_over_N;
+  const double homogeneous = evaluate_model(*all_, mp, sizes).T_cd_over_N;
   out.effective_nu = homogeneous > 0 ? mp.nu * r.T_cd_over_N / homogeneous : mp.nu;
   return out;
 }

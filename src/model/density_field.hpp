@@ -25,6 +25,7 @@
 #pragma once
 #include <array>
 #include <cstddef>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -117,6 +118,7 @@ class DensityField {
     std::vector<double> pos, radii;
     std::vector<std::size_t> samples;
     double spheres = 0, volume = 0;
+    std::shared_ptr<const Empirical> dist;  // its radii, sorted once
   };
   Frame make_frame(std::span<const double> positions, std::span<const double> radii, const FieldBox& box) const;
   ModelResult frame_model(const Frame& f, const ModelParams& p, const std::vector<double>& sizes) const;
@@ -125,6 +127,7 @@ class DensityField {
   FieldOptions opt_;
   std::vector<Frame> frames_;
   std::vector<double> radii_;
+  std::shared_ptr<const Empirical> all_;  // every snapshot's radii, sorted once
 };
 
 }  // namespace hgrid
