@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "cli_support.hpp"
 #include "hgridlab/advice/recommend.hpp"
@@ -185,6 +187,36 @@ TEST(DensityField, SnapshotsOfARunAreAveragedPerParticle) {
     EXPECT_EQ(e.err.rfind("hgrid: error: frames:", 0), 0u) << e.err;
     EXPECT_TRUE(e.out.empty()) << bad;
   }
+}
+
+// A pour as LAMMPS's examples/pour sets it up, `boundary p p fm`: the field
+// takes x and y periodic (windows wrap there), z walled.
+using DensityFieldFiles = TempDir;
+
+TEST_F(DensityFieldFiles, MixedBoundaryDumpIsPeriodicWhereTheFileSays) {
+  std::ifstream in(kBeds + "bed3d_o5_s1.dump");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string dump = text.str();
+  for (std::size_t at = 0; (at = dump.find("BOX BOUNDS ff ff fm", at)) != std::string::npos;)
+    dump.replace(at, 19, "BOX BOUNDS pp pp fm");
+  const std::string file = path("pour.dump");
+  std::ofstream(file) << dump;
+  const ParticleSet s = read_particles(file);
+  ASSERT_TRUE(s.mixed_boundary);
+  const std::array<bool, 3> per = s.periodic_per_axis();
+  EXPECT_TRUE(per[0] && per[1] && !per[2]);
+  const Result r = hgrid_run("recommend " + file + " --json", kNoCalibration);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["nu_source"], "field");
+  EXPECT_TRUE(j["field"]["far_from_homogeneous"].get<bool>());
+  // Wrapping x and y adds the neighbours across the side walls the walled
+  // file lacks: the periodic field holds more than the walled one.
+  const ParticleSet w = read_particles(kBeds + "bed3d_o5_s1.dump");
+  const ModelParams mp{3, 0.5, kK};
+  const std::vector<double> sizes = j["sizes"].get<std::vector<double>>();
+  EXPECT_GT(field_of(s).evaluate(mp, sizes).model.T_cd_over_N, field_of(w).evaluate(mp, sizes).model.T_cd_over_N);
 }
 
 // A homogeneous packing keeps the paper's sizes at the box's nu (the
