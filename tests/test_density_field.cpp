@@ -68,7 +68,9 @@ TEST(DensityField, UniformCentresInAPeriodicBoxGiveTheBoxModel) {
   const std::vector<double> F = f.factors(ModelParams{3, f.box_nu(), kK}, sizes);
   const ModelResult m = evaluate_model(dist, ModelParams{3, f.box_nu(), kK}, sizes);
   for (std::size_t at = 0; at < F.size(); ++at)
-    if (m.T_cd_pair[at] > 0.05 * m.T_cd_over_N) EXPECT_NEAR(F[at], 1.0, kUniformFRelTol) << "pair " << at << " seed " << kSeed;
+    if (m.T_cd_pair[at] > 0.05 * m.T_cd_over_N) {
+      EXPECT_NEAR(F[at], 1.0, kUniformFRelTol) << "pair " << at << " seed " << kSeed;
+    }
   EXPECT_NEAR(f.evaluate(ModelParams{3, 0.3, kK}, sizes).model.T_over_N, m.T_over_N, kUniformFRelTol * m.T_over_N);
   EXPECT_NEAR(f.summary(3 * 2 * dist.r_max()).mean_nu, f.box_nu(), kUniformFRelTol * f.box_nu());
 }
