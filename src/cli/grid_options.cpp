@@ -1,5 +1,6 @@
 #include "grid_options.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "hgridlab/advice/recommend.hpp"
@@ -54,14 +55,15 @@ GridParams resolve(const GridOptions& o, const Packing& p, double K) {
     // Optimal sizes for a packing far from homogeneous (a bed under an
     // empty box): the field model's, as `hgrid recommend` gives them.
     if (r.method == CellMethod::optimal && !r.time_model && !r.excluded_model && !r.levels) {
-      if (const std::optional<DensityField> field = density_field_of(p)) {
+      const std::optional<DensityField> field = density_field_of(p);
+      FieldUse look;  // the field's summary first: close to homogeneous (the figures' packings) ends here
+      if (field) look.summary = field->summary(3 * 2 * *std::max_element(p.radii.begin(), p.radii.end()));
+      if (field && look.far_from_homogeneous()) {
         const Recommendation rec = recommend_for_field(*field, ModelParams{p.d, 0.5, K, g.search});
-        if (rec.field->sizes_from_field()) {
-          g.sizes = merge_fitted_levels(rec.sizes, p);
-          std::fprintf(stderr, "cells: the field model's optimal sizes (far from homogeneous: nu %.3g over the box, "
-                               "%.3g around the particles; docs/MODEL.md section 14)\n",
-                       rec.field->summary.box_nu, rec.field->summary.mean_nu);
-        }
+        g.sizes = merge_fitted_levels(rec.sizes, p);
+        std::fprintf(stderr, "cells: the field model's optimal sizes (far from homogeneous: nu %.3g over the box, "
+                             "%.3g around the particles; docs/MODEL.md section 14)\n",
+                     look.summary.box_nu, look.summary.mean_nu);
       }
     }
   } else {
