@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <variant>
@@ -16,6 +17,7 @@
 #include "hgridlab/advice/recommend.hpp"
 #include "hgridlab/advice/recommend_json.hpp"
 #include "hgridlab/advice/skin_model.hpp"
+#include "hgridlab/advice/skin_tuner.hpp"
 #include "hgridlab/model/distribution.hpp"
 #include "hgridlab/measure/fields.hpp"
 #include "hgridlab/measure/measurement.hpp"
@@ -226,6 +228,7 @@ class PyContactList {
     p.skin_rel = skin_rel;
     volume_ = 1;
     for (double side : b) volume_ *= side;
+    tuner_ = SkinTuner(d_);
     if (d_ == 2) list_.emplace<ContactList<2>>(list_box<2>(b, periodic, origin, tilt, tilt.has_value()), p);
     else list_.emplace<ContactList<3>>(list_box<3>(b, periodic, origin, tilt, tilt.has_value()), p);
   }
@@ -256,7 +259,7 @@ class PyContactList {
           [&](auto& l) {
             if (radii && (auto_sizes_ || auto_skin_)) first_choices(l, x, r);
             rebuilt = l.update(x, r);
-            if (auto_skin_ && rebuilt) tune_skin(l, r);
+            if (auto_skin_ && rebuilt) tune_skin(l, x, r);
           },
           list_);
     }
@@ -327,8 +330,9 @@ class PyContactList {
           out["seconds_per_step"] = s.seconds_per_step();
           out["grid_sizes"] = l.grid_sizes();
           out["skin"] = l.params().skin;
-          out["predicted_seconds_per_step"] = predicted_ ? py::cast(predicted_->seconds_per_step) : py::none();
-          out["predicted_steps_per_build"] = predicted_ ? py::cast(predicted_->steps_per_build) : py::none();
+          const auto& predicted = tuner_.predicted();
+          out["predicted_seconds_per_step"] = predicted ? py::cast(predicted->seconds_per_step) : py::none();
+          out["predicted_steps_per_build"] = predicted ? py::cast(predicted->steps_per_build) : py::none();
           return out;
         },
         list_);
@@ -374,10 +378,34 @@ class PyContactList {
     return v / volume_;
   }
 
+  /// The density field of positions x (N x d) and radii r in the list's
+  /// (untilted) box.
+  template <class L>
+  DensityField field_of(const L& l, std::span<const double> x, std::span<const double> r) const {
+    const auto& box = l.box();
+    FieldBox fb{d_, {}, {}};
+    std::vector<double> rel(x.begin(), x.end());
+    for (int a = 0; a < d_; ++a) {
+      fb.side[a] = box.side[a], fb.periodic[a] = box.periodic[a];
+      for (std::size_t i = 0; i < r.size(); ++i) rel[i * d_ + a] -= box.origin[a];
+    }
+    return DensityField(rel, std::vector<double>(r.begin(), r.end()), fb);
+  }
+
+  /// The packing fraction that shapes the skin model's shell of candidates:
+  /// the particles' mean local nu (their density field, windows of the
+  /// linked cell's scan) in an untilted box, else the box's.
+  template <class L>
+  double skin_nu(const L& l, std::span<const double> x, std::span<const double> r) const {
+    if (l.box().triclinic || r.empty()) return std::min(packing_fraction(r), 0.95);
+    const double rmax = *std::max_element(r.begin(), r.end());
+    return std::min(field_of(l, x, r).summary(6 * rmax).mean_nu, 0.95);
+  }
+
   /// sizes="auto": the sizes `hgrid recommend` gives the first positions and
   /// radii (their density field in an untilted box, else their packing
-  /// fraction; K as `hgrid recommend`); skin="auto": a first skin of a tenth
-  /// of the mean diameter, tuned from the builds on.
+  /// fraction; K as `hgrid recommend`); skin="auto": the tuner's first skin
+  /// (a tenth of the mean diameter), tuned from the builds on.
   template <class L>
   void first_choices(L& l, std::span<const double> x, std::span<const double> r) {
     if (r.empty()) return;
@@ -386,68 +414,30 @@ class PyContactList {
       sized_once_ = true;
       const std::vector<double> radii(r.begin(), r.end());
       const ModelParams mp{d_, nu, choose_K("").K, Search::top_down};
-      const auto& box = l.box();
-      if (!box.triclinic) {
-        FieldBox fb{d_, {}, {}};
-        std::vector<double> rel(x.begin(), x.end());
-        for (int a = 0; a < d_; ++a) {
-          fb.side[a] = box.side[a], fb.periodic[a] = box.periodic[a];
-          for (std::size_t i = 0; i < r.size(); ++i) rel[i * d_ + a] -= box.origin[a];
-        }
-        l.set_sizes(recommend_for_field(DensityField(rel, radii, fb), mp).sizes);
-      } else {
-        l.set_sizes(recommend_cell_sizes(radii, mp).sizes);
-      }
+      if (!l.box().triclinic) l.set_sizes(recommend_for_field(field_of(l, x, r), mp).sizes);
+      else l.set_sizes(recommend_cell_sizes(radii, mp).sizes);
     }
     if (auto_skin_ && !tuned_once_) {
-      double mean = 0;
-      for (double x : r) mean += x;
-      mean /= static_cast<double>(r.size());
-      l.set_skin(0.2 * mean, l.params().skin_rel);
+      l.set_skin(SkinTuner::first_skin(r), l.params().skin_rel);
       tuned_once_ = true;
     }
   }
 
-  /// skin="auto": every kTuneBuilds builds, the skin model (advice/skin_model.hpp)
-  /// from what the list measured over them picks the next skin.
+  /// skin="auto": every SkinTuner::kBuildsPerWindow builds, the skin model
+  /// (advice/skin_tuner.hpp) from what the list measured over them picks the
+  /// next skin.
   template <class L>
-  void tune_skin(L& l, std::span<const double> r) {
+  void tune_skin(L& l, std::span<const double> x, std::span<const double> r) {
     const ContactListStats& s = l.stats();
-    if (s.builds < last_.builds + kTuneBuilds) return;
-    const double steps = double(s.steps - last_.steps), builds = double(s.builds - last_.builds);
-    const double n = double(r.size());
-    SkinMeasurement m;
-    m.skin = l.params().skin;
-    m.steps_per_build = steps / builds;
-    m.contacts_per_n = double(s.contacts) / n;
-    m.candidates_per_n = double(s.candidates_tested - last_.candidates_tested) / steps / n;
-    m.seconds_grid = (s.seconds_grid - last_.seconds_grid) / builds;
-    m.seconds_store = (s.seconds_build - last_.seconds_build - (s.seconds_grid - last_.seconds_grid)) / builds;
-    m.seconds_test = (s.seconds_test - last_.seconds_test) / steps;
-    m.seconds_check = (s.seconds_check - last_.seconds_check) / steps;
-    last_ = s;
-    if (!(m.skin > 0)) return;
-    // The model needs two skins: the first window's skin is doubled for the
-    // second; later, the last window at another skin than this one's.
-    if (!other_ || std::abs(other_->skin - m.skin) <= 1e-3 * m.skin) {
-      other_ = m;
-      l.set_skin(2 * m.skin, l.params().skin_rel);
-      return;
-    }
-    const Empirical radii(std::vector<double>(r.begin(), r.end()));
-    const double nu = std::min(packing_fraction(r), 0.95);
-    predicted_ = choose_skin(*other_, m, radii, d_, nu, 1e-3 * radii.r_min(), 4 * radii.r_max());
-    if (std::abs(predicted_->skin - m.skin) > 1e-3 * m.skin) other_ = m;
-    l.set_skin(predicted_->skin, l.params().skin_rel);
+    if (!tuner_.due(s)) return;  // the field only when the tuner will use it
+    if (const auto next = tuner_.after_build(s, l.params().skin, r, skin_nu(l, x, r)))
+      l.set_skin(*next, l.params().skin_rel);
   }
-  static constexpr std::uint64_t kTuneBuilds = 5;
 
   int d_ = 3;
   double volume_ = 1;
   bool auto_sizes_ = false, auto_skin_ = false, tuned_once_ = false, sized_once_ = false;
-  ContactListStats last_;                      // the stats at the last tuning
-  std::optional<SkinPrediction> predicted_;    // the model's choice at the last tuning
-  std::optional<SkinMeasurement> other_;       // the last window measured at another skin
+  SkinTuner tuner_{3};
   std::variant<ContactList<2>, ContactList<3>> list_{std::in_place_type<ContactList<3>>, ListBox<3>{{1, 1, 1}, {}, {}},
                                                      ContactListParams{}};
   std::optional<DoubleArray> radii_;

@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "hgridlab/advice/skin_model.hpp"
+#include "hgridlab/advice/skin_tuner.hpp"
 #include "hgridlab/base/error.hpp"
 #include "hgridlab/model/distribution.hpp"
 
@@ -47,6 +49,40 @@ TEST(SkinModel, ReproducesItsMeasurementsAndChoosesItsOwnMinimum) {
   for (double s = 0.01; s <= 5.0; s *= 1.05)
     EXPECT_LE(best.seconds_per_step, predict_skin(a, b, radii, 3, 0.4, s).seconds_per_step * (1 + 1e-9)) << s;
   EXPECT_THROW(predict_skin(a, a, radii, 3, 0.4, 0.3), InputError);
+}
+
+// skin = "auto" (advice/skin_tuner.hpp): the first skin a tenth of the mean
+// diameter; nothing until a window of builds has passed; the first window's
+// skin doubled; then the model's choice from the two windows, which is
+// choose_skin's on the same measurements.
+TEST(SkinTuner, DoublesTheFirstSkinThenTakesTheModelsChoice) {
+  const std::vector<double> r = {1.0, 2.0, 3.0, 4.0};
+  EXPECT_NEAR(SkinTuner::first_skin(r), 0.5, kClosedFormTol);
+  SkinTuner tuner(3, 2);
+  ContactListStats s;
+  // Window 1 at skin 0.5: 20 steps, 2 builds.
+  s.steps = 10, s.builds = 1, s.contacts = 4, s.candidates_tested = 120;
+  s.seconds_grid = 1e-3, s.seconds_build = 2e-3, s.seconds_test = 1e-3, s.seconds_check = 5e-4;
+  EXPECT_FALSE(tuner.after_build(s, 0.5, r, 0.4));
+  s.steps = 20, s.builds = 2, s.candidates_tested = 240;
+  s.seconds_grid = 2e-3, s.seconds_build = 4e-3, s.seconds_test = 2e-3, s.seconds_check = 1e-3;
+  const auto second = tuner.after_build(s, 0.5, r, 0.4);
+  ASSERT_TRUE(second);
+  EXPECT_DOUBLE_EQ(*second, 1.0);
+  EXPECT_FALSE(tuner.predicted());
+  // Window 2 at skin 1.0: 40 more steps, 2 builds, longer lists.
+  s.steps = 60, s.builds = 4, s.candidates_tested = 240 + 40 * 16;
+  s.seconds_grid = 4e-3, s.seconds_build = 9e-3, s.seconds_test = 2e-3 + 40 * 1.5e-4, s.seconds_check = 3e-3;
+  const auto third = tuner.after_build(s, 1.0, r, 0.4);
+  ASSERT_TRUE(third && tuner.predicted());
+  const SkinMeasurement a{0.5, 10.0, 1.0, 3.0, 1e-3, 1e-3, 1e-4, 5e-5};
+  const SkinMeasurement b{1.0, 20.0, 1.0, 4.0, 1e-3, 1.5e-3, 1.5e-4, 5e-5};
+  const Empirical dist(r);
+  const SkinPrediction want = choose_skin(a, b, dist, 3, 0.4, 1e-3 * dist.r_min(), 4 * dist.r_max());
+  EXPECT_NEAR(*third, want.skin, kClosedFormTol * want.skin);
+  EXPECT_THROW(SkinTuner(4), InputError);
+  EXPECT_THROW(SkinTuner(3, 0), InputError);
+  EXPECT_THROW(tuner.after_build(s, 1.0, r, 1.0), InputError);
 }
 
 }  // namespace

@@ -1,0 +1,54 @@
+#include "hgridlab/advice/skin_tuner.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "hgridlab/base/error.hpp"
+#include "hgridlab/model/distribution.hpp"
+
+namespace hgrid {
+
+SkinTuner::SkinTuner(int d, std::uint64_t builds_per_window) : d_(d), window_(builds_per_window) {
+  if (d != 2 && d != 3) throw InputError("d", "must be 2 or 3");
+  if (builds_per_window < 1) throw InputError("builds_per_window", "must be >= 1");
+}
+
+double SkinTuner::first_skin(std::span<const double> radii) {
+  if (radii.empty()) return 0;
+  double mean = 0;
+  for (const double r : radii) mean += r;
+  return 0.2 * mean / static_cast<double>(radii.size());
+}
+
+std::optional<double> SkinTuner::after_build(const ContactListStats& s, double skin, std::span<const double> radii,
+                                             double nu) {
+  if (!(nu >= 0 && nu < 1)) throw InputError("nu", "must be in [0, 1)");
+  if (!due(s) || radii.empty()) return std::nullopt;
+  const double steps = static_cast<double>(s.steps - last_.steps), builds = static_cast<double>(s.builds - last_.builds);
+  const double n = static_cast<double>(radii.size());
+  SkinMeasurement m;
+  m.skin = skin;
+  m.steps_per_build = steps / builds;
+  m.contacts_per_n = static_cast<double>(s.contacts) / n;
+  m.candidates_per_n = static_cast<double>(s.candidates_tested - last_.candidates_tested) / steps / n;
+  m.seconds_grid = (s.seconds_grid - last_.seconds_grid) / builds;
+  m.seconds_store = (s.seconds_build - last_.seconds_build - (s.seconds_grid - last_.seconds_grid)) / builds;
+  m.seconds_test = (s.seconds_test - last_.seconds_test) / steps;
+  m.seconds_check = (s.seconds_check - last_.seconds_check) / steps;
+  last_ = s;
+  if (!(m.skin > 0)) return std::nullopt;
+  // Two skins are needed: the first window's is doubled for the second;
+  // later, the last window at another skin than this one's.
+  if (!other_ || std::abs(other_->skin - m.skin) <= 1e-3 * m.skin) {
+    other_ = m;
+    return 2 * m.skin;
+  }
+  const Empirical dist(std::vector<double>(radii.begin(), radii.end()));
+  predicted_ = choose_skin(*other_, m, dist, d_, std::min(nu, 0.95), 1e-3 * dist.r_min(), 4 * dist.r_max());
+  if (std::abs(predicted_->skin - m.skin) > 1e-3 * m.skin) other_ = m;
+  return predicted_->skin;
+}
+
+}  // namespace hgrid
