@@ -32,7 +32,10 @@
 #include "hgridlab/model/cell_sizes.hpp"
 #include "hgridlab/packing/generate.hpp"
 
+#include "detail/skin_measurement.hpp"
+
 using namespace hgrid;
+using bench::ListRun;
 
 namespace {
 
@@ -135,12 +138,6 @@ class Sweeper {
   double step_ = 0;
 };
 
-struct ListRun {
-  double seconds_per_step = 1e300;
-  ContactListStats stats;
-  std::uint64_t contacts = 0;
-};
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -173,11 +170,7 @@ int main(int argc, char** argv) {
   const double r_min = dist.r_min();
 
   // The baseline: the grid rebuilt every step, the fastest of the scanned sizes.
-  std::map<std::string, std::vector<double>> sized;
-  for (double nu : {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7})
-    sized["nu=" + std::to_string(nu).substr(0, 3)] = sizes_for_grid(
-        choose_cell_sizes(dist, ModelParams{3, nu, 0.2, Search::bottom_up}, CellMethod::optimal).sizes, 2 * dist.r_max());
-  sized["linked cell"] = {2 * dist.r_max()};
+  std::map<std::string, std::vector<double>> sized = bench::scanned_sizes(dist);
   const auto rebuild_pass = [&](const std::vector<double>& sizes) {
     std::vector<Sphere<3>> s = spheres_of(frames[0], radii);
     HGrid<3, Boundary::periodic> g(s, box, GridParams{sizes, Search::bottom_up});
@@ -213,17 +206,7 @@ int main(int argc, char** argv) {
     return r;
   };
   const auto measurement = [&](double skin, const ListRun& r) {
-    const auto& l = r.stats;
-    SkinMeasurement m;
-    m.skin = skin;
-    m.steps_per_build = double(l.steps) / double(std::max<std::uint64_t>(1, l.builds));
-    m.contacts_per_n = double(r.contacts) / double(l.steps) / double(n);
-    m.candidates_per_n = double(l.candidates_tested) / double(l.steps) / double(n);
-    m.seconds_grid = l.seconds_grid / double(std::max<std::uint64_t>(1, l.builds));
-    m.seconds_store = (l.seconds_build - l.seconds_grid) / double(std::max<std::uint64_t>(1, l.builds));
-    m.seconds_test = l.seconds_test / double(l.steps);
-    m.seconds_check = l.seconds_check / double(l.steps);
-    return m;
+    return bench::skin_measurement(skin, r.stats, r.contacts, double(n));
   };
 
   // The model's skin from two reference skins (their own passes).
