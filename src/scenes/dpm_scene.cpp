@@ -6,6 +6,7 @@
 
 #include "hgridlab/calibration/calibration.hpp"
 #include "hgridlab/model/time_model.hpp"
+#include "hgridlab/measure/measurement.hpp"
 
 #include <array>
 #include <filesystem>
@@ -20,7 +21,6 @@
 #include "hgridlab/dpm/haff.hpp"
 #include "hgridlab/scenes/dpm_scene_file.hpp"
 #include "hgridlab/dpm/simulation.hpp"
-#include "hgridlab/grid/hgrid.hpp"
 #include "hgridlab/base/threads.hpp"
 #include "hgridlab/model/model.hpp"
 #include "hgridlab/io/provenance.hpp"
@@ -43,17 +43,10 @@ struct RunResult {
   std::vector<double> final_state;  // positions, then velocities, at the last step
 };
 
-template <int D, Boundary B>
-Counters counted(const Packing& p, const std::vector<double>& sizes) {
-  const auto s = p.spheres<D>();
-  HGrid<D, B> g(s, p.extent<D>(), GridParams{sizes, Search::top_down});
-  return g.template query<Search::top_down, Counted>([](std::uint32_t, std::uint32_t) {});
-}
-
+/// The counted search of the initial state, through the one measurement
+/// (measure/measurement.hpp) every command and scene reports from.
 Counters measured_counts(const Packing& p, const std::vector<double>& sizes) {
-  const bool w = p.boundary == Boundary::walls;
-  if (p.d == 2) return w ? counted<2, Boundary::walls>(p, sizes) : counted<2, Boundary::periodic>(p, sizes);
-  return w ? counted<3, Boundary::walls>(p, sizes) : counted<3, Boundary::periodic>(p, sizes);
+  return measure(p, GridParams{sizes, Search::top_down}).counts;
 }
 
 /// The runs of the scene (each a grid's sizes and a contact list's skin:
