@@ -24,6 +24,7 @@
 //   build/pour_replay DUMP [--rounds 3] [--reference 0.05] [--lammps-skin 0.2]
 //                          [--brute 3] [--first F] [--frames K] [--list-sizes NAME]
 //                          [--profile-skin S]  (only the list at skin S, --rounds times)
+//                          [--trace 1]  (skin = "auto"'s choices on stderr)
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -160,6 +161,7 @@ int main(int argc, char** argv) {
   const std::string path = argv[1];
   std::uint64_t rounds = 3, brute = 3, first = 0, count = ~std::uint64_t{0} / 2;
   double reference = 0.05, lammps_skin = 0.2, profile_skin = 0;
+  bool trace = false;
   std::string list_sizes_name;
   for (int a = 2; a + 1 < argc; a += 2) {
     if (!std::strcmp(argv[a], "--rounds")) rounds = std::strtoull(argv[a + 1], nullptr, 10);
@@ -170,6 +172,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[a], "--frames")) count = std::strtoull(argv[a + 1], nullptr, 10);
     else if (!std::strcmp(argv[a], "--profile-skin")) profile_skin = std::atof(argv[a + 1]);
     else if (!std::strcmp(argv[a], "--list-sizes")) list_sizes_name = argv[a + 1];
+    else if (!std::strcmp(argv[a], "--trace")) trace = std::atoi(argv[a + 1]) != 0;
     else {
       std::fprintf(stderr, "pour_replay: unknown option %s\n", argv[a]);
       return 2;
@@ -266,6 +269,13 @@ int main(int argc, char** argv) {
   const double s0 = reference, s1 = 2 * reference;
   const SkinMeasurement m0 = measurement(s0, list_pass(s0, false)), m1 = measurement(s1, list_pass(s1, false));
   const SkinPrediction chosen = choose_skin(m0, m1, dist, 3, nu_local, 1e-3 * r_min, 4 * dist.r_max());
+  if (trace)
+    for (const SkinMeasurement& m : {m0, m1})
+      std::fprintf(stderr,
+                   "pour_replay: measured skin %.4g: %.2f steps/build, L/N %.3f, grid %.3e + store %.3e per build, test "
+                   "%.3e + check %.3e per step; predicted there %.3e s/step\n",
+                   m.skin, m.steps_per_build, m.candidates_per_n, m.seconds_grid, m.seconds_store, m.seconds_test,
+                   m.seconds_check, predict_skin(m0, m1, dist, 3, nu_local, m.skin).seconds_per_step);
 
   // skin = "auto": the tuner (advice/skin_tuner.hpp) from its first skin on,
   // re-chosen every few builds, as Python's ContactList(skin="auto") runs.
@@ -278,7 +288,13 @@ int main(int argc, char** argv) {
     for (const Frame& f : frames) {
       const auto t0 = Clock::now();
       if (list.update(f.x, f.r))
-        if (const auto next = tuner.after_build(list.stats(), list.params().skin, f.r, nu_local)) list.set_skin(*next);
+        if (const auto next = tuner.after_build(list.stats(), list.params().skin, f.r, nu_local)) {
+          if (trace)
+            std::fprintf(stderr, "pour_replay: step %ld, skin %.4g -> %.4g (predicted %.3e s/step, %.1f steps/build)\n",
+                         f.step, list.params().skin, *next, tuner.predicted() ? tuner.predicted()->seconds_per_step : 0.0,
+                         tuner.predicted() ? tuner.predicted()->steps_per_build : 0.0);
+          list.set_skin(*next);
+        }
       list.for_each_contact([&](std::uint32_t, std::uint32_t) { ++contacts; });
       seconds += seconds_since(t0);
     }

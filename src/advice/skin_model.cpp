@@ -53,14 +53,25 @@ SkinPrediction predict_skin(const SkinMeasurement& a, const SkinMeasurement& b, 
   const double sh = shell_pairs_per_particle(radii, d, nu, skin);
   SkinPrediction p;
   p.skin = skin;
-  // The list's length: the two measured, joined (and continued) by the shell's shape.
-  const double w = (sh - sh_lo) / (sh_hi - sh_lo);
-  p.candidates_per_n = std::max(0.0, lo.candidates_per_n + w * (hi.candidates_per_n - lo.candidates_per_n));
+  // The two measurements (windows of a run, not one state) resolve how the
+  // costs grow with the list only when their lists differ enough
+  // (kResolvedLengths) and the slope comes out >= 0. Otherwise (lists of
+  // nearly one length, as in a dense bed at small skins, where timing noise
+  // would set the slope) each cost is proportional to the list's length,
+  // from the larger skin's measurement: the steepest growth a non-negative
+  // per-particle part allows, so that no skin looks free.
+  const double l_lo = lo.candidates_per_n, l_hi = hi.candidates_per_n;
+  const bool resolved = l_hi > kResolvedLengths * l_lo;
+  // The list's length: the two measured, joined (and continued) by the
+  // shell's shape; if the larger skin's list is not the longer (two windows
+  // of a changing run), proportional to the shell from the larger skin's.
+  if (l_hi > l_lo) p.candidates_per_n = std::max(0.0, l_lo + (sh - sh_lo) / (sh_hi - sh_lo) * (l_hi - l_lo));
+  else p.candidates_per_n = sh_hi > 0 ? l_hi * sh / sh_hi : l_hi;
   // Affine in the list's length: the value at L from the two measured.
   const auto at = [&](double y_lo, double y_hi) {
-    const double dl = hi.candidates_per_n - lo.candidates_per_n;
-    const double slope = dl > 0 ? std::max(0.0, (y_hi - y_lo) / dl) : 0.0;
-    return std::max(0.0, y_lo + slope * (p.candidates_per_n - lo.candidates_per_n));
+    const double slope = (y_hi - y_lo) / (l_hi - l_lo);
+    if (resolved && slope >= 0) return std::max(0.0, y_lo + slope * (p.candidates_per_n - l_lo));
+    return l_hi > 0 ? y_hi * p.candidates_per_n / l_hi : y_hi;
   };
   // Steps per build: ballistic, from the measurement at the nearer skin.
   const SkinMeasurement& near = std::abs(std::log(skin / lo.skin)) < std::abs(std::log(skin / hi.skin)) ? lo : hi;

@@ -8,8 +8,10 @@
 // candidates and the check of the particles' margins. t_store and t_test
 // are affine in L (a part per particle, a part per candidate); their two
 // coefficients, t_grid, t_check and the steps per build come from what the
-// list measured as it ran at two skins s0 < s1. The model gives how the
-// terms change with s:
+// list measured as it ran at two skins s0 < s1. When the two lists' lengths
+// are too close to resolve a cost's slope (L(s1) < kResolvedLengths L(s0))
+// or it comes out negative, that cost is proportional to L, from s1's
+// measurement. The model gives how the terms change with s:
 // - L(s): the measured lengths L(s0), L(s1) joined by the shape of the
 //   shell: shell(s), the pairs per particle with r_i + r_j <= distance <
 //   r_i + r_j + s in a fluid at packing fraction nu,
@@ -25,6 +27,10 @@
 #include "hgridlab/model/distribution.hpp"
 
 namespace hgrid {
+
+/// Two measured lists resolve the slope of a cost in the list's length when
+/// the longer is at least this many times the shorter.
+inline constexpr double kResolvedLengths = 1.25;
 
 /// The pair density at contact of the equal-size hard-sphere fluid at
 /// packing fraction nu: (1 - nu/2) / (1 - nu)^3 (3D, Carnahan-Starling),

@@ -40,14 +40,15 @@ std::optional<double> SkinTuner::after_build(const ContactListStats& s, double s
   last_ = s;
   if (!(m.skin > 0)) return std::nullopt;
   // Two skins are needed: the first window's is doubled for the second;
-  // later, the last window at another skin than this one's.
-  if (!other_ || std::abs(other_->skin - m.skin) <= 1e-3 * m.skin) {
+  // later, this window beside the last one measured at a skin at least
+  // kSkinRatio away (nearer skins would leave the model's slopes to noise).
+  if (!other_) {
     other_ = m;
     return 2 * m.skin;
   }
   const Empirical dist(std::vector<double>(radii.begin(), radii.end()));
   predicted_ = choose_skin(*other_, m, dist, d_, std::min(nu, 0.95), 1e-3 * dist.r_min(), 4 * dist.r_max());
-  if (std::abs(predicted_->skin - m.skin) > 1e-3 * m.skin) other_ = m;
+  if (std::max(other_->skin, m.skin) >= kSkinRatio * std::min(other_->skin, m.skin)) other_ = m;
   return predicted_->skin;
 }
 

@@ -2,9 +2,9 @@
 // the skin model (advice/skin_model.hpp) applied as the run goes. The first
 // skin is a tenth of the mean diameter; after every `builds_per_window`
 // builds, what the list measured over them (its stats' differences) is set
-// beside the last window measured at another skin, and the model's choice
-// from the two is the skin of the next window (the first window's skin is
-// doubled for the second, so that there are two). The measurements follow
+// beside the last window measured at a skin at least kSkinRatio away, and
+// the model's choice from the two is the skin of the next window (the first
+// window's skin is doubled for the second, so that there are two). The measurements follow
 // the run, so the choice follows it: a cooling gas slows and the skin
 // grows, a pour speeds up and it shrinks.
 //
@@ -49,6 +49,8 @@ class SkinTuner {
   const std::optional<SkinPrediction>& predicted() const { return predicted_; }
 
   static constexpr std::uint64_t kBuildsPerWindow = 5;
+  /// The two windows the model is given are at skins at least this far apart.
+  static constexpr double kSkinRatio = 1.5;
 
  private:
   int d_;
