@@ -1,4 +1,5 @@
 # Fig. 04: T*/N and L* against omega.
 file = 'fig04-linear.csv'
-what = 'Linear'
+fig = 'Fig. 4'
+what = 'linear'
 load 'plots/lib/best_vs_omega.gp'

@@ -1,4 +1,5 @@
 # Fig. 05: T*/N and L* against omega.
 file = 'fig05-exponential.csv'
-what = 'Exponential'
+fig = 'Fig. 5'
+what = 'exponential'
 load 'plots/lib/best_vs_omega.gp'

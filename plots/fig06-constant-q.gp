@@ -5,7 +5,7 @@ set logscale y
 set xlabel 'L'
 set ylabel 'T/N'
 set yrange [10:1000]
-set title 'Constant ratio q, Top-Down, {/Symbol w} = 100, {/Symbol a} = -3'
+set title 'Fig. 6: the model''s cost against L, cell sizes in a constant ratio q (Top-Down, {/Symbol w} = 100, {/Symbol a} = -3)'
 set key top left
 plot d('fig06-constant-q.csv') u 1:2 w lp ls 1 t 'q = 0.5', '' u 1:3 w lp ls 2 t 'q = 1', \
      '' u 1:4 w lp ls 3 t 'q = 2', '' u 1:5 w lp ls 4 t 'q = 5'

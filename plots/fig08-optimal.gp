@@ -1,4 +1,5 @@
 # Fig. 08: T*/N and L* against omega.
 file = 'fig08-optimal.csv'
-what = 'Optimal'
+fig = 'Fig. 8'
+what = 'optimal'
 load 'plots/lib/best_vs_omega.gp'

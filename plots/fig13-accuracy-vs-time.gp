@@ -7,7 +7,7 @@ set logscale xy
 set format xy '10^{%L}'
 set xlabel 'time to compute sizes and L^* [s]'
 set ylabel '(T - T_{opt}) / T_{opt}   (optimal: plotted at 10^{-12})'
-set title 'What accuracy costs in time (d = 3, {/Symbol n} = 0.7, K = 0.2)'
+set title 'Fig. 13 (beyond the paper): cost above the optimum against the time to choose the sizes (d = 3, {/Symbol n} = 0.7, K = 0.2)'
 set key top right
 f(y) = y > 1e-12 ? y : 1e-12
 plot for [i=0:4] d('fig13-accuracy-time.csv') u ($1 == i ? $4 : NaN):(f($6)) w p ls (i+1) ps 1.2 \
