@@ -25,6 +25,7 @@
 //                          [--brute 3] [--first F] [--frames K] [--list-sizes NAME]
 //                          [--profile-skin S]  (only the list at skin S, --rounds times)
 //                          [--trace 1]  (skin = "auto"'s choices on stderr)
+//                          [--threads T]  (every pass on T threads; default 1)
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -162,6 +163,7 @@ int main(int argc, char** argv) {
   std::uint64_t rounds = 3, brute = 3, first = 0, count = ~std::uint64_t{0} / 2;
   double reference = 0.05, lammps_skin = 0.2, profile_skin = 0;
   bool trace = false;
+  int threads = 1;
   std::string list_sizes_name;
   for (int a = 2; a + 1 < argc; a += 2) {
     if (!std::strcmp(argv[a], "--rounds")) rounds = std::strtoull(argv[a + 1], nullptr, 10);
@@ -173,6 +175,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[a], "--profile-skin")) profile_skin = std::atof(argv[a + 1]);
     else if (!std::strcmp(argv[a], "--list-sizes")) list_sizes_name = argv[a + 1];
     else if (!std::strcmp(argv[a], "--trace")) trace = std::atoi(argv[a + 1]) != 0;
+    else if (!std::strcmp(argv[a], "--threads")) threads = std::max(1, std::atoi(argv[a + 1]));
     else {
       std::fprintf(stderr, "pour_replay: unknown option %s\n", argv[a]);
       return 2;
@@ -200,14 +203,15 @@ int main(int argc, char** argv) {
 
   const auto rebuild_pass = [&](const std::vector<double>& sizes) {
     std::vector<Sphere<3>> s = spheres_of(frames[0]);
-    HGrid<3, Boundary::walls> g(s, box, GridParams{sizes, Search::bottom_up});
-    std::uint64_t contacts = 0;
+    HGrid<3, Boundary::walls> g(s, box, GridParams{sizes, Search::bottom_up, threads});
+    std::vector<std::uint64_t> contacts(8 * static_cast<std::size_t>(threads));  // a cache line per thread
     const auto t0 = Clock::now();
     for (const Frame& f : frames) {
       s.resize(f.r.size());
       for (std::size_t i = 0; i < s.size(); ++i) s[i] = {{f.x[3 * i], f.x[3 * i + 1], f.x[3 * i + 2]}, f.r[i]};
       g.rebuild(s);
-      g.for_each_pair<PairsOnly>([&](std::uint32_t, std::uint32_t) { ++contacts; });
+      if (threads <= 1) g.for_each_pair<PairsOnly>([&](std::uint32_t, std::uint32_t) { ++contacts[0]; });
+      else g.for_each_pair<PairsOnly>([&](int t, std::uint32_t, std::uint32_t) { ++contacts[8 * std::size_t(t)]; });
     }
     return seconds_since(t0) / double(frames.size());
   };
@@ -229,7 +233,7 @@ int main(int argc, char** argv) {
   const std::vector<double> list_sizes = sized[list_sizes_name.empty() ? base_name : list_sizes_name];
   std::uint64_t mismatches = 0, checked = 0, brute_checked = 0;
   const auto list_pass = [&](double skin, bool check) {
-    ContactList<3> list(lbox, ContactListParams{list_sizes, Search::bottom_up, 1, skin, 0.0});
+    ContactList<3> list(lbox, ContactListParams{list_sizes, Search::bottom_up, threads, skin, 0.0});
     ListRun r;
     double seconds = 0;
     const std::size_t brute_every = brute ? std::max<std::size_t>(1, frames.size() / brute) : 0;
@@ -281,7 +285,7 @@ int main(int argc, char** argv) {
   // re-chosen every few builds, as Python's ContactList(skin="auto") runs.
   double auto_skin_final = 0;
   const auto auto_pass = [&]() {
-    ContactList<3> list(lbox, ContactListParams{list_sizes, Search::bottom_up, 1, SkinTuner::first_skin(frames[0].r), 0.0});
+    ContactList<3> list(lbox, ContactListParams{list_sizes, Search::bottom_up, threads, SkinTuner::first_skin(frames[0].r), 0.0});
     SkinTuner tuner(3);
     double seconds = 0;
     std::uint64_t contacts = 0;
@@ -321,10 +325,10 @@ int main(int argc, char** argv) {
                  (unsigned long long)rounds);
   }
   std::printf("# %s: %zu frames (steps %ld..%ld), %zu -> %zu spheres, diameters %.3g..%.3g, box %.4g x %.4g x %.4g "
-              "(walls), box nu %.3f, mean local nu %.3f; fastest of %llu alternated rounds, one thread\n",
+              "(walls), box nu %.3f, mean local nu %.3f; fastest of %llu alternated rounds, %d thread(s)\n",
               path.c_str(), frames.size(), frames.front().step, frames.back().step, frames.front().r.size(),
               last.r.size(), 2 * r_min, 2 * dist.r_max(), side[0], side[1], side[2], field.box_nu(), nu_local,
-              (unsigned long long)rounds);
+              (unsigned long long)rounds, threads);
   std::printf("# grid rebuilt every frame: fastest sizes %s (%zu levels), %.3e s/frame\n", base_name.c_str(),
               list_sizes.size(), base);
   std::printf("%8s %12s %10s %12s %10s %14s\n", "skin", "s/frame", "speed-up", "frames/build", "cand/N", "s/build");
