@@ -256,7 +256,7 @@ int main(int argc, char** argv) {
     return r;
   };
   const auto measurement = [&](double skin, const ListRun& r) {
-    return bench::skin_measurement(skin, r.stats, r.contacts, double(last.r.size()));
+    return skin_measurement(skin, r.stats, {}, double(last.r.size()));
   };
 
   if (profile_skin > 0) {  // only the list at one skin, untimed passes (for a profiler)

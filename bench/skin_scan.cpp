@@ -16,6 +16,7 @@
 #include <string>
 
 #include "hgridlab/advice/skin_model.hpp"
+#include "hgridlab/advice/skin_tuner.hpp"
 #include "hgridlab/base/clock.hpp"
 #include "hgridlab/dpm/simulation.hpp"
 #include "hgridlab/model/cell_sizes.hpp"
@@ -70,19 +71,7 @@ int main(int argc, char** argv) {
     r.steps_per_build = double(l.steps) / double(l.builds);
     return r;
   };
-  const auto measure = [&](const Run& r) {
-    const auto& l = r.stats.list;
-    SkinMeasurement m;
-    m.skin = r.skin;
-    m.steps_per_build = r.steps_per_build;
-    m.contacts_per_n = double(r.stats.pair_contacts) / double(l.steps) / double(p.size());
-    m.candidates_per_n = r.candidates_per_n;
-    m.seconds_grid = l.seconds_grid / double(l.builds);
-    m.seconds_store = (l.seconds_build - l.seconds_grid) / double(l.builds);
-    m.seconds_test = l.seconds_test / double(l.steps);
-    m.seconds_check = l.seconds_check / double(l.steps);
-    return m;
-  };
+  const auto measure = [&](const Run& r) { return skin_measurement(r.skin, r.stats.list, {}, double(p.size())); };
   const Run ref = run(reference), ref2 = run(2 * reference);
   const SkinMeasurement m = measure(ref), m2 = measure(ref2);
   const Empirical radii(p.radii);

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "hgridlab/advice/skin_model.hpp"
+#include "hgridlab/advice/skin_tuner.hpp"
 #include "hgridlab/base/clock.hpp"
 #include "hgridlab/contacts/contact_list.hpp"
 #include "hgridlab/grid/hgrid.hpp"
@@ -206,7 +207,7 @@ int main(int argc, char** argv) {
     return r;
   };
   const auto measurement = [&](double skin, const ListRun& r) {
-    return bench::skin_measurement(skin, r.stats, r.contacts, double(n));
+    return skin_measurement(skin, r.stats, {}, double(n));
   };
 
   // The model's skin from two reference skins (their own passes).

@@ -1,6 +1,6 @@
-// What a contact list measured over a run at one skin, as the skin model
-// (advice/skin_model.hpp) takes it, and a pass of a list over a recorded
-// trajectory: what the skin benchmarks share.
+// What the skin benchmarks share: the sizes their baseline is scanned over
+// and a pass of a contact list over a recorded trajectory (its stats give
+// the skin model's measurement: advice/skin_tuner.hpp, skin_measurement).
 #pragma once
 #include <algorithm>
 #include <cstdint>
@@ -8,7 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "hgridlab/advice/skin_model.hpp"
 #include "hgridlab/contacts/contact_list.hpp"
 #include "hgridlab/model/cell_sizes.hpp"
 
@@ -33,21 +32,5 @@ struct ListRun {
   ContactListStats stats;
   std::uint64_t contacts = 0;
 };
-
-/// From a list's stats after a run of n particles at `skin` that handed over
-/// `contacts` contacts in all.
-inline SkinMeasurement skin_measurement(double skin, const ContactListStats& l, std::uint64_t contacts, double n) {
-  const double builds = static_cast<double>(std::max<std::uint64_t>(1, l.builds)), steps = static_cast<double>(l.steps);
-  SkinMeasurement m;
-  m.skin = skin;
-  m.steps_per_build = steps / builds;
-  m.contacts_per_n = static_cast<double>(contacts) / steps / n;
-  m.candidates_per_n = static_cast<double>(l.candidates_tested) / steps / n;
-  m.seconds_grid = l.seconds_grid / builds;
-  m.seconds_store = (l.seconds_build - l.seconds_grid) / builds;
-  m.seconds_test = l.seconds_test / steps;
-  m.seconds_check = l.seconds_check / steps;
-  return m;
-}
 
 }  // namespace hgrid::bench

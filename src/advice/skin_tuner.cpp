@@ -15,6 +15,22 @@ SkinTuner::SkinTuner(int d, std::uint64_t builds_per_window) : d_(d), window_(bu
   if (builds_per_window < 1) throw InputError("builds_per_window", "must be >= 1");
 }
 
+SkinMeasurement skin_measurement(double skin, const ContactListStats& now, const ContactListStats& before, double n) {
+  const double steps = static_cast<double>(std::max<std::uint64_t>(1, now.steps - before.steps));
+  const double builds = static_cast<double>(std::max<std::uint64_t>(1, now.builds - before.builds));
+  const double grid = now.seconds_grid - before.seconds_grid;
+  SkinMeasurement m;
+  m.skin = skin;
+  m.steps_per_build = steps / builds;
+  m.contacts_per_n = static_cast<double>(now.contacts) / n;
+  m.candidates_per_n = static_cast<double>(now.candidates_tested - before.candidates_tested) / steps / n;
+  m.seconds_grid = grid / builds;
+  m.seconds_store = (now.seconds_build - before.seconds_build - grid) / builds;
+  m.seconds_test = (now.seconds_test - before.seconds_test) / steps;
+  m.seconds_check = (now.seconds_check - before.seconds_check) / steps;
+  return m;
+}
+
 double SkinTuner::first_skin(std::span<const double> radii) {
   if (radii.empty()) return 0;
   double mean = 0;
@@ -26,17 +42,7 @@ std::optional<double> SkinTuner::after_build(const ContactListStats& s, double s
                                              double nu) {
   if (!(nu >= 0 && nu < 1)) throw InputError("nu", "must be in [0, 1)");
   if (!due(s) || radii.empty()) return std::nullopt;
-  const double steps = static_cast<double>(s.steps - last_.steps), builds = static_cast<double>(s.builds - last_.builds);
-  const double n = static_cast<double>(radii.size());
-  SkinMeasurement m;
-  m.skin = skin;
-  m.steps_per_build = steps / builds;
-  m.contacts_per_n = static_cast<double>(s.contacts) / n;
-  m.candidates_per_n = static_cast<double>(s.candidates_tested - last_.candidates_tested) / steps / n;
-  m.seconds_grid = (s.seconds_grid - last_.seconds_grid) / builds;
-  m.seconds_store = (s.seconds_build - last_.seconds_build - (s.seconds_grid - last_.seconds_grid)) / builds;
-  m.seconds_test = (s.seconds_test - last_.seconds_test) / steps;
-  m.seconds_check = (s.seconds_check - last_.seconds_check) / steps;
+  const SkinMeasurement m = skin_measurement(skin, s, last_, static_cast<double>(radii.size()));
   last_ = s;
   if (!(m.skin > 0)) return std::nullopt;
   // Two skins are needed: the first window's is doubled for the second;
