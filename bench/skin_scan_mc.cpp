@@ -239,14 +239,22 @@ int main(int argc, char** argv) {
               "%llu alternated rounds, one thread\n",
               radii.size(), kNu, kOmega, frames.size(), 100 * acceptance, (unsigned long long)rounds);
   std::printf("# grid rebuilt every step: fastest sizes %s, %.3e s/step\n", base_name.c_str(), base);
-  std::printf("%10s %12s %12s %12s %12s\n", "skin/r_min", "s/step", "speed-up", "steps/build", "cand/N");
+  for (const SkinMeasurement& m : {m0, m1})
+    std::printf("# measured at skin %.3f r_min: %.2f steps/build, travel %.3f r_min/step, L/N %.3f, per build grid "
+                "%.3e + store %.3e s, per step test %.3e + check %.3e s\n",
+                m.skin / r_min, m.steps_per_build, m.travel_per_step / r_min, m.candidates_per_n, m.seconds_grid,
+                m.seconds_store, m.seconds_test, m.seconds_check);
+  std::printf("# model: the skin model's prediction from the two reference skins' measurements\n");
+  std::printf("%10s %12s %12s %12s %12s %12s %12s %12s\n", "skin/r_min", "s/step", "model", "speed-up", "steps/build",
+              "model", "cand/N", "model");
   double best = 1e300, best_skin = 0;
   for (double f : scan) {
     const ListRun& r = list_best[f];
     const auto& l = r.stats;
-    std::printf("%10.3f %12.3e %12.2f %12.1f %12.3f\n", f, r.seconds_per_step, base / r.seconds_per_step,
-                double(l.steps) / double(std::max<std::uint64_t>(1, l.builds)),
-                double(l.candidates_tested) / double(l.steps) / double(n));
+    const SkinPrediction pr = predict_skin(m0, m1, dist, 3, kNu, f * r_min);
+    std::printf("%10.3f %12.3e %12.3e %12.2f %12.1f %12.1f %12.3f %12.3f\n", f, r.seconds_per_step, pr.seconds_per_step,
+                base / r.seconds_per_step, double(l.steps) / double(std::max<std::uint64_t>(1, l.builds)),
+                pr.steps_per_build, double(l.candidates_tested) / double(l.steps) / double(n), pr.candidates_per_n);
     if (r.seconds_per_step < best) best = r.seconds_per_step, best_skin = f;
   }
   std::printf("model's skin %.4f r_min (from %.3f and %.3f): %.3e s/step, %.3f of the fastest scanned (%.3f r_min), "

@@ -185,6 +185,30 @@ TEST(ContactList, ZeroSkinRebuildsEveryStepAndStaysExact) {
   EXPECT_EQ(st.builds, st.steps);
 }
 
+// The travel per step: two particles flying apart, 0.3 a step each, with
+// skin 1: the margins (0.5 each) are used up at the second step (0.6 + 0.6
+// = 1.2 >= 1), so every build comes two steps after the last, having found
+// 1.2 used up; a third particle far away never moves. A new particle count
+// rebuilds without travel.
+TEST(ContactList, TravelIsTheMarginUsedUpPerStep) {
+  ContactList<3> list(ListBox<3>{{100, 100, 100}, {0, 0, 0}, {false, false, false}},
+                      ContactListParams{{}, Search::bottom_up, 1, 1.0, 0.0});
+  std::vector<Sphere<3>> s = {{{50, 50, 50}, 1.0}, {{53, 50, 50}, 1.0}, {{10, 10, 10}, 1.0}};
+  for (int t = 0; t <= 6; ++t) {
+    list.update(s);
+    s[0].x[0] -= 0.3;
+    s[1].x[0] += 0.3;
+  }
+  const ContactListStats& st = list.stats();
+  EXPECT_EQ(st.builds, 4u);  // steps 0, 2, 4, 6
+  EXPECT_EQ(st.travel_steps, 6u);
+  EXPECT_NEAR(st.travel, 3 * 1.2, 1e-9);
+  s.push_back({{20, 20, 20}, 1.0});
+  list.update(s);
+  EXPECT_EQ(st.builds, 5u);
+  EXPECT_EQ(st.travel_steps, 6u);
+}
+
 TEST(ContactList, CompressionGrowthAndInsertion) {
   std::uint64_t seed = 101;
   for (const auto& per : {kWalls, kPeriodic, kPour})

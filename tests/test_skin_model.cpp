@@ -51,6 +51,22 @@ TEST(SkinModel, ReproducesItsMeasurementsAndChoosesItsOwnMinimum) {
   EXPECT_THROW(predict_skin(a, a, radii, 3, 0.4, 0.3), InputError);
 }
 
+// A list rebuilt at every step (Monte Carlo sweeps) measured its steps per
+// build at their floor, 1: the travel per step it measured sets k(s) = s /
+// travel instead; a measurement with more steps per build keeps k(s0) s / s0.
+TEST(SkinModel, EveryStepRebuildsTakeTheMeasuredTravel) {
+  const PowerLaw radii(-3, 10);
+  SkinMeasurement a{0.2, 1.0, 0.1, 0.3, 2e-3, 1e-3, 4e-4, 1e-4};
+  SkinMeasurement b{0.4, 1.0, 0.1, 0.5, 2e-3, 1.4e-3, 5e-4, 1e-4};
+  a.travel_per_step = b.travel_per_step = 0.8;
+  EXPECT_NEAR(predict_skin(a, b, radii, 3, 0.4, 0.4).steps_per_build, 1.0, kClosedFormTol);
+  EXPECT_NEAR(predict_skin(a, b, radii, 3, 0.4, 2.4).steps_per_build, 3.0, kClosedFormTol);
+  b.travel_per_step = 0;  // not measured: ballistic from k(s1)
+  EXPECT_NEAR(predict_skin(a, b, radii, 3, 0.4, 2.4).steps_per_build, 6.0, kClosedFormTol);
+  b.steps_per_build = 3.0, b.travel_per_step = 0.8;  // not censored: k(s1) s / s1
+  EXPECT_NEAR(predict_skin(a, b, radii, 3, 0.4, 2.4).steps_per_build, 18.0, kClosedFormTol);
+}
+
 // skin = "auto" (advice/skin_tuner.hpp): the first skin a tenth of the mean
 // diameter; nothing until a window of builds has passed; the first window's
 // skin doubled; then the model's choice from the two windows, which is

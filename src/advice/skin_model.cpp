@@ -73,9 +73,13 @@ SkinPrediction predict_skin(const SkinMeasurement& a, const SkinMeasurement& b, 
     if (resolved && slope >= 0) return std::max(0.0, y_lo + slope * (p.candidates_per_n - l_lo));
     return l_hi > 0 ? y_hi * p.candidates_per_n / l_hi : y_hi;
   };
-  // Steps per build: ballistic, from the measurement at the nearer skin.
+  // Steps per build: ballistic, from the measurement at the nearer skin
+  // (from its travel per step where it rebuilt at nearly every step).
   const SkinMeasurement& near = std::abs(std::log(skin / lo.skin)) < std::abs(std::log(skin / hi.skin)) ? lo : hi;
-  p.steps_per_build = std::max(1.0, near.steps_per_build * skin / near.skin);
+  if (near.steps_per_build < kCensoredSteps && near.travel_per_step > 0)
+    p.steps_per_build = std::max(1.0, skin / near.travel_per_step);
+  else
+    p.steps_per_build = std::max(1.0, near.steps_per_build * skin / near.skin);
   const double grid = 0.5 * (lo.seconds_grid + hi.seconds_grid), check = 0.5 * (lo.seconds_check + hi.seconds_check);
   p.seconds_per_step =
       (grid + at(lo.seconds_store, hi.seconds_store)) / p.steps_per_build + at(lo.seconds_test, hi.seconds_test) + check;

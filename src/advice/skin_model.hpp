@@ -20,7 +20,10 @@
 //   in 3D, Henderson in 2D) held over the shell;
 // - k(s) = k(s0) s / s0: between builds the particles move on straight
 //   lines (ballistic), and a build comes when the two largest displacements
-//   add up to the skin.
+//   add up to the skin. A list rebuilt at (nearly) every step
+//   (k(s0) < kCensoredSteps) says only that a step moves particles farther
+//   than s0; there k(s) = s / v, v the margin its builds found used up per
+//   step (the two largest displacements' sum, even beyond the skin).
 #pragma once
 #include <vector>
 
@@ -31,6 +34,11 @@ namespace hgrid {
 /// Two measured lists resolve the slope of a cost in the list's length when
 /// the longer is at least this many times the shorter.
 inline constexpr double kResolvedLengths = 1.25;
+
+/// A measurement with fewer steps per build than this rebuilt at nearly
+/// every step: its steps per build bound the motion from below only, and
+/// the travel per step it measured sets k(s).
+inline constexpr double kCensoredSteps = 2.0;
 
 /// The pair density at contact of the equal-size hard-sphere fluid at
 /// packing fraction nu: (1 - nu/2) / (1 - nu)^3 (3D, Carnahan-Starling),
@@ -52,6 +60,7 @@ struct SkinMeasurement {
   double seconds_store = 0;      // per build: the candidate search and storing
   double seconds_test = 0;       // per step: the test of the candidates
   double seconds_check = 0;      // per step: reading positions, the margins
+  double travel_per_step = 0;    // the margin its builds found used up, per step (0: unknown)
 };
 
 struct SkinPrediction {

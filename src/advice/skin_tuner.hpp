@@ -26,7 +26,7 @@ namespace hgrid {
 
 /// What a contact list measured at one skin over a window of its run, from
 /// its stats at the window's end (`now`) and start (`before`; a
-/// default-constructed one for the whole run): steps per build, candidates
+/// default-constructed one for the whole run): steps per build, travel per step, candidates
 /// tested per step and particle, seconds per build (grid; search and
 /// storing) and per step (test; check), contacts per particle at the end.
 /// n: the particles' number (> 0).

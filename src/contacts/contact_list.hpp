@@ -107,6 +107,14 @@ struct ContactListStats {
   std::uint64_t candidates = 0;      // pairs in the list now
   std::uint64_t contacts = 0;        // contacts now
   std::uint64_t candidates_tested = 0;  // summed over the steps
+  /// Over the builds that displacements called for (not those of a new
+  /// particle count or of the first update): the margin used up when each
+  /// came (the two largest displacements' sum, with growth, when skin_rel is
+  /// 0; it may exceed the skin when one step moved that far) and the steps
+  /// since the build before. travel / travel_steps is how fast the particles
+  /// use up a skin, even when the list is rebuilt at every step.
+  double travel = 0;
+  std::uint64_t travel_steps = 0;
   double seconds_check = 0;   // reading the positions, the skin check
   double seconds_build = 0;   // grid build, candidate search, storing the list
   double seconds_grid = 0;    //   of which: the grid build (HGrid::rebuild)
@@ -399,6 +407,7 @@ class ContactList {
     for (const auto& e : block_error_)
       if (e) std::rethrow_exception(e);  // blocks in index order: the lowest particle's error
     bool rebuild = !same_count || exact;
+    double used = -1;  // the margin used up, when displacements call for the build
     if (!rebuild) {
       double m1 = std::numeric_limits<double>::infinity(), m2 = m1;
       for (const double m : block_min_) two_smallest(m, m1, m2);
@@ -421,13 +430,19 @@ class ContactList {
         shift = std::sqrt(shift2);
       }
       rebuild = n > 1 && m1 + m2 <= shift + kRoundingSlack * (scale + 2 * rbig_max_);
+      if (rebuild) used = std::max(0.0, margin_built_ - (m1 + m2));
     }
     stats_.seconds_check += seconds_since(t0);
     if (rebuild) {
       t0 = Clock::now();
+      const std::uint64_t since = stats_.steps - steps_built_;
       build();  // may throw (sizes below the inflated diameters): nothing committed yet
       stats_.seconds_build += seconds_since(t0);
       ++stats_.builds;
+      if (used >= 0) {
+        stats_.travel += used;
+        stats_.travel_steps += since;
+      }
     } else {
       s_.swap(next_);
     }
@@ -535,10 +550,14 @@ class ContactList {
     xref_.swap(raw_);
     rbig_.resize(n);
     rbig_max_ = 0;
+    double m1 = std::numeric_limits<double>::infinity(), m2 = m1;
     for (std::size_t i = 0; i < n; ++i) {
       rbig_[i] = gs_[i].r;
       rbig_max_ = std::max(rbig_max_, gs_[i].r);
+      two_smallest(gs_[i].r - s_[i].r, m1, m2);
     }
+    margin_built_ = n > 1 ? m1 + m2 : 0;
+    steps_built_ = stats_.steps;
     for (int k = 0; k < D; ++k) side_built_[k] = box_.side[k];
     tilt_built_ = tilted_box(box_).tilt;
     built_ = true;
@@ -631,6 +650,8 @@ class ContactList {
   std::vector<Vec> xref_, raw_;      // displacements' references at the last build (see update_from); of the update being read
   std::vector<double> rbig_;         // inflated radii at the last build
   double rbig_max_ = 0;
+  double margin_built_ = 0;        // the two smallest margins' sum at the last build
+  std::uint64_t steps_built_ = 0;  // stats_.steps when it was made
   Extent<D> side_built_{};
   std::vector<Sphere<D>> gs_;        // the inflated spheres of a build
   std::vector<Sphere<D>> wrapped_;   // a triclinic box at zero tilt: the wrapped centres
