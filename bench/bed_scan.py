@@ -43,7 +43,9 @@ def bed(hgrid, path, frame, repeat):
     p = hgridlab.read_packing(path, frame=frame)
     d = p["d"]
     pos, rad, box = p["positions"], p["radii"], p["box"][:d]
-    periodic = p["boundary"] == "periodic"
+    # A MercuryDPM .data file does not say its boundary (the reader assumes
+    # periodic); the beds' driver, bench/mercurydpm/pour.cpp, walls every side.
+    periodic = p["boundary"] == "periodic" and not path.endswith(".data")
 
     def count(sizes):
         return hgridlab.count(pos, rad, box, periodic, sizes=sizes, threads=1, K=K)["T_over_N"]

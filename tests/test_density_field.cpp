@@ -1,7 +1,8 @@
 // The cost model over a packing's density field (model/density_field.hpp,
 // advice recommend_for_field; docs/MODEL.md section 14), checked against what
-// the counted grid measures on beds LAMMPS poured (tests/data/beds, made by
-// experiments/beds/make_fixtures.sh) and on homogeneous packings.
+// the counted grid measures on beds LAMMPS and MercuryDPM poured
+// (tests/data/beds, made by experiments/beds/make_fixtures.sh and
+// make_mercurydpm_fixtures.sh) and on homogeneous packings.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -50,9 +51,20 @@ struct Bed {
   const char* file;
   int frame;  // 0: in progress (a gas over a bed), 1: settled
 };
-constexpr Bed kBedsUsed[] = {{"bed3d_o5_s1.dump", 0}, {"bed3d_o5_s1.dump", 1}, {"bed3d_o3_s2.dump", 0},
-                             {"bed3d_o3_s2.dump", 1}, {"bed2d_o5_s1.dump", 0}, {"bed2d_o5_s1.dump", 1},
-                             {"bed2d_o10_s2.dump", 0}, {"bed2d_o10_s2.dump", 1}};
+/// LAMMPS's beds (bed*.dump, experiments/beds/make_fixtures.sh) and
+/// MercuryDPM's (mdpm*.data, experiments/beds/make_mercurydpm_fixtures.sh).
+constexpr Bed kBedsUsed[] = {{"bed3d_o5_s1.dump", 0},    {"bed3d_o5_s1.dump", 1},   {"bed3d_o3_s2.dump", 0},
+                             {"bed3d_o3_s2.dump", 1},    {"bed2d_o5_s1.dump", 0},   {"bed2d_o5_s1.dump", 1},
+                             {"bed2d_o10_s2.dump", 0},   {"bed2d_o10_s2.dump", 1},  {"mdpm3d_o5_s1.data", 0},
+                             {"mdpm3d_o5_s1.data", 1},   {"mdpm2d_o10_s2.data", 0}, {"mdpm2d_o10_s2.data", 1}};
+
+/// A bed as poured: a MercuryDPM .data file does not say its boundary; the
+/// driver walled every side.
+ParticleSet read_bed(const Bed& b) {
+  ParticleSet s = read_particles(kBeds + b.file, Isolation::none, b.frame);
+  if (std::string(b.file).ends_with(".data")) s.boundary = Boundary::walls;
+  return s;
+}
 
 TEST(DensityField, UniformCentresInAPeriodicBoxGiveTheBoxModel) {
   constexpr std::uint64_t kSeed = 5;
@@ -77,7 +89,7 @@ TEST(DensityField, UniformCentresInAPeriodicBoxGiveTheBoxModel) {
 
 TEST(DensityField, PredictionHoldsWhenTheBinsAreHalvedOrDoubled) {
   for (const Bed& b : kBedsUsed) {
-    const ParticleSet s = read_particles(kBeds + b.file, Isolation::none, b.frame);
+    const ParticleSet s = read_bed(b);
     const DensityField f = field_of(s);
     const Recommendation r = recommend_for_field(f, ModelParams{s.d, 0.5, kK});
     const double at = r.model.T_over_N;
@@ -95,7 +107,7 @@ TEST(DensityField, PredictionHoldsWhenTheBinsAreHalvedOrDoubled) {
 // 5 % of the best of the scan and the field model predicts within 10 %.
 TEST(DensityField, RecommendationOnPouredBedsIsNearTheBestOfTheScan) {
   for (const Bed& b : kBedsUsed) {
-    const ParticleSet s = read_particles(kBeds + b.file, Isolation::none, b.frame);
+    const ParticleSet s = read_bed(b);
     const Packing p = to_packing(s, b.file);
     double best = measured(p, {2 * *std::max_element(s.radii.begin(), s.radii.end())});
     for (double nu : kScanNu) best = std::min(best, measured(p, recommend_cell_sizes(s.radii, ModelParams{s.d, nu, kK}).sizes));
@@ -104,9 +116,11 @@ TEST(DensityField, RecommendationOnPouredBedsIsNearTheBestOfTheScan) {
     EXPECT_LE(got, (1 + kBestOfScanRelTol) * best) << b.file << " frame " << b.frame;
     EXPECT_NEAR(r.model.T_over_N, got, kPredictionRelTol * got) << b.file << " frame " << b.frame;
     ASSERT_TRUE(r.field);
+    if (!std::string(b.file).ends_with(".dump")) continue;
+    // LAMMPS's beds stand in boxes far above them: there the box's nu alone
+    // (the finding, kept as a check that the fixtures still show
+    // it) predicts a half or more too little, and the field says so.
     EXPECT_TRUE(r.field->far_from_homogeneous()) << b.file << " frame " << b.frame;
-    // The box's nu alone: the finding, kept as a check that the
-    // fixtures still show it (predictions a half or more too low).
     const Recommendation h = recommend_cell_sizes(s.radii, ModelParams{s.d, s.packing_fraction(), kK});
     EXPECT_LT(h.model.T_over_N, 0.6 * measured(p, h.sizes)) << b.file << " frame " << b.frame;
   }

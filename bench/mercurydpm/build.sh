@@ -3,7 +3,7 @@
 # against it, outside hgridlab's own build. Nothing is downloaded.
 #   MERCURYDPM_SRC=/path/to/MercuryDPM bash bench/mercurydpm/build.sh
 # MERCURYDPM_BUILD (default build-mercurydpm/) receives mercurydpm/ (the
-# kernel), drivers/ (mercurydpm_free_cooling, mercurydpm_write_restart, mercurydpm_peer) and COMMIT (the commit built:
+# kernel), drivers/ (mercurydpm_free_cooling, mercurydpm_write_restart, mercurydpm_peer, mercurydpm_pour) and COMMIT (the commit built:
 # `git rev-parse HEAD` of the checkout, or its COMMIT file for a git archive).
 # Without MERCURYDPM_SRC it says so and exits 0 (the comparison is optional).
 set -euo pipefail
