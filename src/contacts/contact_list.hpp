@@ -44,7 +44,7 @@
 #include "hgridlab/base/error.hpp"
 #include "hgridlab/base/parallel.hpp"
 #include "hgridlab/base/threads.hpp"
-#include "hgridlab/contacts/pair_sum.hpp"
+#include "hgridlab/contacts/pair_keys.hpp"
 #include "hgridlab/grid/geometry.hpp"
 #include "hgridlab/grid/hgrid.hpp"
 #include "hgridlab/grid/params.hpp"
@@ -507,11 +507,11 @@ class ContactList {
       for (std::size_t h = 0; h < gp.sizes.size(); ++h) gp.sizes[h] = inflated(0.5 * params_.sizes[h]) * 2;
     }
     for (auto& k : keys_) k.clear();
-    if (!sum_ || pair_n_ != n) {
-      sum_.emplace(n);
+    if (!keys_of_ || pair_n_ != n) {
+      keys_of_.emplace(n);
       pair_n_ = n;
     }
-    PairSum& ps = *sum_;
+    const detail::PairKeys& ps = *keys_of_;
     const std::span<const Sphere<D>> gspan(gs_.data(), gs_.size());
     const auto collect = [&](const auto& grid) {  // the grid's pairs as keys, one list per thread
       if (T <= 1)
@@ -542,9 +542,32 @@ class ContactList {
         search(gp_);
       }
     }
-    // Canonical order, then compressed rows.
-    ps.gather(keys_);
-    ps.rows(cstart_, cand_);
+    // Canonical order as compressed rows: a counting sort by the first index,
+    // then each row (a few partners) sorted.
+    cstart_.assign(n + 1, 0);
+    std::size_t total = 0;
+    for (const auto& l : keys_) {
+      total += l.size();
+      for (const std::uint64_t k : l) ++cstart_[ps.first(k) + 1];
+    }
+    for (std::size_t i = 0; i < n; ++i) cstart_[i + 1] += cstart_[i];
+    fill_.assign(cstart_.begin(), cstart_.end() - 1);
+    cand_.resize(total);
+    for (const auto& l : keys_)
+      for (const std::uint64_t k : l) cand_[fill_[ps.first(k)]++] = ps.second(k);
+    const std::size_t B = blocks_for(n);
+    detail::parallel_for(static_cast<int>(B), B, [&](std::size_t b, int) {
+      for (std::size_t i = n * b / B, i1 = n * (b + 1) / B; i < i1; ++i) {
+        std::uint32_t* const row = cand_.data() + cstart_[i];
+        const std::uint32_t len = cstart_[i + 1] - cstart_[i];
+        for (std::uint32_t m = 1; m < len; ++m) {  // insertion sort: rows are short
+          const std::uint32_t v = row[m];
+          std::uint32_t at = m;
+          for (; at > 0 && row[at - 1] > v; --at) row[at] = row[at - 1];
+          row[at] = v;
+        }
+      }
+    });
     // Commit.
     s_.swap(next_);
     xref_.swap(raw_);
@@ -661,8 +684,9 @@ class ContactList {
   std::optional<HGrid<D, Boundary::periodic>> gp_;  // any axis periodic (walled ones padded)
   std::optional<TiltedHGrid<D>> gt_;                // a triclinic box
   std::array<double, 3> tilt_built_{};
-  std::optional<PairSum> sum_;
+  std::optional<detail::PairKeys> keys_of_;  // packs a pair into a key for indices below pair_n_
   std::size_t pair_n_ = 0;
+  std::vector<std::uint32_t> fill_;          // a build's counting sort: each row's next free place
   std::vector<std::vector<std::uint64_t>> keys_;  // per thread of a build's search
   std::vector<std::uint32_t> cstart_, cand_;      // the candidates, compressed rows
   std::vector<std::uint32_t> start_;
