@@ -77,18 +77,35 @@ GridParams grid_params(const Packing& p, const std::optional<std::vector<double>
 
 py::dict recommend(const DoubleArray& radii, std::optional<double> nu, int d, const std::optional<py::object>& K,
                    const std::string& search, const std::string& cost, const std::optional<DoubleArray>& positions,
-                   const std::optional<DoubleArray>& box, const std::optional<py::object>& periodic) {
+                   const std::optional<DoubleArray>& box, const std::optional<py::object>& periodic,
+                   const std::optional<std::vector<double>>& tilt) {
   std::string k_text;
   if (K && !K->is_none()) k_text = py::isinstance<py::str>(*K) ? K->cast<std::string>() : format_number(K->cast<double>());
   const KChoice k = choose_K(k_text);
   const Search s = parse_search(search);
   const std::vector<double> r_list = to_vector(radii, "radii");
-  if (positions.has_value() != box.has_value())
+  if (positions.has_value() != box.has_value() && !(tilt && box))
     throw InputError(positions ? "box" : "positions", "positions and box go together (the density field needs both)");
-  if (!positions && !nu) throw InputError("nu", "give nu (a homogeneous packing), or positions and box (its density field)");
+  if (!positions && !nu && !tilt)
+    throw InputError("nu", "give nu (a homogeneous packing), or positions and box (its density field)");
   const std::optional<TimeModelUse> time = choose_time_model(cost, k, d, static_cast<double>(r_list.size()));
   Recommendation r;
-  if (positions && !nu) {
+  if (tilt) {  // a tilted box: the mapped packing its grid searches (no density field)
+    if (!box) throw InputError("box", "a tilt needs the box's side lengths");
+    const std::vector<double> b = to_vector(*box, "box");
+    if (b.size() != static_cast<std::size_t>(d)) throw InputError("box", "must hold d = " + std::to_string(d) + " side lengths");
+    if (tilt->size() != (d == 2 ? 1u : 3u)) throw InputError("tilt", d == 2 ? "must be [xy] in 2D" : "must be [xy, xz, yz] in 3D");
+    double volume = 1, balls = 0;
+    for (double v : b) volume *= v;
+    for (double v : r_list) balls += ball_volume(d, v);
+    if (!nu) nu = balls / volume;
+    std::array<double, 3> t{};
+    for (std::size_t k = 0; k < tilt->size(); ++k) t[k] = (*tilt)[k];
+    double c = 1;
+    if (d == 2) c = TiltedBox<2>{{b[0], b[1]}, t}.inflation();
+    else c = TiltedBox<3>{{b[0], b[1], b[2]}, t}.inflation();
+    r = recommend_tilted(r_list, ModelParams{d, *nu, k.K, s}, c, time);
+  } else if (positions && !nu) {
     if (positions->ndim() != 2 || positions->shape(1) != d)
       throw InputError("positions", "must be an N x d array (d = " + std::to_string(d) + ")");
     if (static_cast<std::size_t>(positions->shape(0)) != r_list.size())
@@ -415,7 +432,14 @@ class PyContactList {
       const std::vector<double> radii(r.begin(), r.end());
       const ModelParams mp{d_, nu, choose_K("").K, Search::top_down};
       if (!l.box().triclinic) l.set_sizes(recommend_for_field(field_of(l, x, r), mp).sizes);
-      else l.set_sizes(recommend_cell_sizes(radii, mp).sizes);
+      else {  // the mapped packing its tilted grid searches, at the box's tilt now
+        const auto& b = l.box();
+        std::array<double, 3> tilt = b.tilt;
+        double c = 1;
+        if constexpr (L::dimension == 2) c = TiltedBox<2>{b.side, {tilt[0], 0.0, 0.0}}.inflation();
+        else c = TiltedBox<3>{b.side, tilt}.inflation();
+        l.set_sizes(recommend_tilted(radii, mp, c).sizes);
+      }
     }
     if (auto_skin_ && !tuned_once_) {
       l.set_skin(SkinTuner::first_skin(r), l.params().skin_rel);
@@ -451,13 +475,15 @@ PYBIND11_MODULE(hgridlab, m) {
   py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
   m.def("recommend", &recommend, py::arg("radii"), py::arg("nu") = py::none(), py::arg("d") = 3, py::arg("K") = py::none(),
         py::arg("search") = "topdown", py::arg("cost") = "auto", py::arg("positions") = py::none(),
-        py::arg("box") = py::none(), py::arg("periodic") = py::none(),
+        py::arg("box") = py::none(), py::arg("periodic") = py::none(), py::arg("tilt") = py::none(),
         "Optimal cell sizes for these radii (any unit) at packing fraction nu: a dict with the keys of "
         "`hgrid recommend --json` that do not describe a file (levels, sizes in the radii's unit, T_over_N, speedup "
         "over the linked cell, K and K_source, lammps and mercurydpm lines, ...) plus d and nu. K: a number, 'auto', "
         "or None for the stored calibration if any, else 0.2. cost: 'count' (the paper's T), 'time' (this "
         "machine's time model, from `hgrid calibrate`) or 'auto' (the time model when K came from a calibration "
-        "that has one), as `hgrid recommend --cost`.");
+        "that has one), as `hgrid recommend --cost`. tilt ([xy] or [xy, xz, yz], with box): a sheared "
+        "(triclinic) box, whose grid searches the mapped packing (docs/MODEL.md section 12); nu defaults to the "
+        "box's.");
   m.def("pairs", &pairs, py::arg("positions"), py::arg("radii"), py::arg("box"), py::arg("periodic") = true,
         py::arg("sizes") = py::none(), py::arg("search") = "topdown", py::arg("threads") = 0, py::arg("tilt") = py::none(),
         "Every overlapping pair (i, j), i < j, as an (M, 2) uint32 array, in no particular order; sizes: cell sizes "

@@ -95,6 +95,22 @@ def test_recommend_from_positions_takes_the_density_field(name):
         hgridlab.recommend(p["radii"], d=d)
 
 
+def test_recommend_in_a_tilted_box_takes_the_mapped_packing():
+    # A packing LAMMPS sheared to xy = lx / 2: the sizes of the mapped
+    # packing its grid searches, as `hgrid recommend` gives the file.
+    path = os.path.join(BEDS, "shear3d_o5.dump")
+    p = hgridlab.read_packing(path)
+    r = hgridlab.recommend(p["radii"], d=3, K=0.2, box=p["box"], tilt=p["tilt"])
+    assert r["tilt_inflation"] > 1.2
+    j = json.loads(subprocess.run([os.environ["HGRID_BINARY"], "recommend", path, "--K", "0.2", "--json"], check=True,
+                                  capture_output=True, text=True).stdout)
+    assert r["sizes"] == pytest.approx(j["sizes"], rel=SAME_SIZES_REL_TOL)
+    got = hgridlab.count(p["positions"], p["radii"], p["box"], True, sizes=r["sizes"], threads=1, tilt=p["tilt"])
+    assert r["T_over_N"] == pytest.approx(got["T_over_N"], rel=0.10)
+    with pytest.raises(ValueError, match="tilt"):
+        hgridlab.recommend(p["radii"], d=3, box=p["box"], tilt=[1.0])
+
+
 def test_recommend_refuses_bad_input():
     with pytest.raises(ValueError, match="radii"):
         hgridlab.recommend(np.array([1.0, -1.0]), nu=0.5, d=3)

@@ -8,6 +8,7 @@
 #include "hgridlab/advice/lammps_fit.hpp"
 #include "hgridlab/base/error.hpp"
 #include "hgridlab/grid/geometry.hpp"
+#include "hgridlab/grid/tilted_box.hpp"
 #include "hgridlab/model/cell_sizes.hpp"
 #include "hgridlab/model/distribution.hpp"
 #include "hgridlab/model/time_model.hpp"
@@ -66,6 +67,34 @@ Recommendation recommend_cell_sizes(const std::vector<double>& radii, const Mode
                                     const std::optional<TimeModelUse>& time) {
   validate(p);
   return recommend_in_units(unit_radii(radii), p, time);
+}
+
+Recommendation recommend_tilted(const std::vector<double>& radii, const ModelParams& p, double inflation,
+                                const std::optional<TimeModelUse>& time) {
+  if (!(std::isfinite(inflation) && inflation >= 1))
+    throw InputError("tilt", "the box's inflation must be finite and >= 1 (got " + format_number(inflation) + ")");
+  if (inflation == 1) return recommend_cell_sizes(radii, p, time);
+  std::vector<double> mapped(radii);
+  for (double& r : mapped) r *= inflation;
+  ModelParams mp = p;
+  mp.nu = p.nu * std::pow(inflation, p.d);
+  mp.overfull = true;
+  Recommendation out = recommend_cell_sizes(mapped, mp, time);
+  for (double& s : out.sizes) s /= inflation;
+  out.r_min /= inflation;
+  out.r_max /= inflation;
+  out.sizes = sizes_for_grid(out.sizes, 2 * out.r_max);  // the top level holds the largest particle despite rounding
+  out.model.sizes = out.sizes;
+  out.linked_cell_size = 2 * out.r_max;
+  out.linked_cell.sizes = {out.linked_cell_size};
+  out.tilt_inflation = inflation;
+  return out;
+}
+
+double tilt_inflation(const ParticleSet& s) {
+  if (!s.tilted() || !s.box) return 1.0;
+  if (s.d == 2) return TiltedBox<2>{{(*s.box)[0], (*s.box)[1]}, {s.tilt[0], 0.0, 0.0}}.inflation();
+  return TiltedBox<3>{{(*s.box)[0], (*s.box)[1], (*s.box)[2]}, s.tilt}.inflation();
 }
 
 Recommendation recommend_for_field(const DensityField& field, const ModelParams& p,
@@ -169,7 +198,10 @@ std::optional<DensityField> density_field_of(const ParticleSet& s) {
 Recommendation recommend_for_packing(const Packing& p, double K, Search search) {
   const ModelParams mp{p.d, std::min(1.0, p.packing_fraction()), K, search};
   const std::optional<DensityField> field = density_field_of(p);
-  Recommendation r = field ? recommend_for_field(*field, mp) : recommend_cell_sizes(p.radii, mp);
+  Recommendation r = field          ? recommend_for_field(*field, mp)
+                     : p.tilted()     ? recommend_tilted(p.radii, mp, p.d == 2 ? p.tilted_box<2>().inflation()
+                                                                              : p.tilted_box<3>().inflation())
+                                      : recommend_cell_sizes(p.radii, mp);
   add_lammps_collections(r, p.radii, p.d, r.field ? r.field->nu_effective : mp.nu);
   return r;
 }

@@ -62,6 +62,8 @@ struct Recommendation {
   std::string lammps_model_source;
   /// Set by recommend_for_field: the field it used.
   std::optional<FieldUse> field;
+  /// Set by recommend_tilted: c, the tilted box's inflation (1: untilted).
+  double tilt_inflation = 1;
 };
 
 /// The optimal sizes (best number of levels L*, or with `time` the
@@ -82,6 +84,20 @@ Recommendation recommend_cell_sizes(const std::vector<double>& radii, const Mode
 /// Either way the model in the result is the field model's; p.nu is not used.
 Recommendation recommend_for_field(const DensityField& field, const ModelParams& p,
                                    std::optional<TimeModelUse> time = std::nullopt);
+
+/// A tilted (sheared, triclinic) box's sizes (docs/MODEL.md section 12):
+/// its grid searches the mapped packing, radii and cell sizes c times larger
+/// (c = TiltedBox::inflation() >= 1) with random centres at packing fraction
+/// c^d nu (above 1 for a dense sheared packing). The mapped packing's
+/// optimum at p (p.nu the box's), its sizes and the linked cell's divided by
+/// c; the model's T/N is the mapped packing's, what the tilted grid counts.
+/// c = 1 is recommend_cell_sizes. InputError for c < 1 or not finite.
+Recommendation recommend_tilted(const std::vector<double>& radii, const ModelParams& p, double inflation,
+                                const std::optional<TimeModelUse>& time = std::nullopt);
+
+/// c of a file's tilted box (TiltedBox::inflation), 1 for an untilted one
+/// or none.
+double tilt_inflation(const ParticleSet& s);
 
 /// The density field of a file's particles (positions in an untilted box),
 /// or nothing when the file has no positions or box, or a tilted box.

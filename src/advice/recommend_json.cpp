@@ -25,6 +25,7 @@ std::string recommendation_json(const Recommendation& r, const KChoice& k, Searc
   j["T_cd_over_N"] = r.model.T_cd_over_N;
   j["T_ca_over_N"] = r.model.T_ca_over_N;
   j["linked_cell_size"] = r.linked_cell_size;
+  j["tilt_inflation"] = r.tilt_inflation;
   j["linked_cell_T_over_N"] = r.linked_cell.T_over_N;
   j["speedup"] = r.speedup();
   j["cost"] = r.seconds ? "time" : "count";

@@ -37,7 +37,7 @@ constexpr const char* kJsonKeys =
     "without positions: window, box_nu, mean_local_nu, effective_nu, empty_fraction, histogram (fraction of particles per local nu "
     "bin of 0.05), far_from_homogeneous, homogeneous_T_over_N (the box's nu at these sizes), homogeneous_sizes (what the box's nu "
     "alone recommends), homogeneous_sizes_T_over_N (the field model's T/N for them), sizes_from (field: far from homogeneous; "
-    "box: the homogeneous sizes)), box (side lengths or null), tilt (a tilted box's xy [xz yz], or null), boundary, K, K_source (given|calibration|paper), "
+    "box: the homogeneous sizes)), box (side lengths or null), tilt (a tilted box's xy [xz yz], or null), tilt_inflation (c: a tilted box's grid searches the mapped packing, radii and sizes x c, at c^d nu; 1 untilted), boundary, K, K_source (given|calibration|paper), "
     "calibration_path, K_note (why a stored calibration was not used, or empty), search, levels, sizes (exact cell sizes, file's unit), sizes_pasted (rounded up to 6 digits, "
     "as in the settings), fraction_per_level, particles_per_cell, T_over_N, T_cd_over_N (overlap tests), "
     "T_ca_over_N (cell accesses), linked_cell_size (2 r_max), linked_cell_T_over_N, speedup "
@@ -90,6 +90,10 @@ void print_text(const RecommendOptions& o, const ParticleSet& s, const FileInput
     std::printf("nu = %g from the file's box (boundary %s)\n", in.nu, boundary_description(s).c_str());
   else
     std::printf("nu = %g (given)\n", in.nu);
+  if (r.tilt_inflation > 1)
+    std::printf("tilted box: its grid searches the mapped packing, radii and cell sizes x c = %.4g, random centres at "
+                "c^%d nu = %.4g; the sizes and predictions are its (docs/MODEL.md section 12)\n",
+                r.tilt_inflation, in.d, in.nu * std::pow(r.tilt_inflation, in.d));
   std::printf("K = %g (%s)\n\n", k.K, k_text(k).c_str());
   std::printf("%s HGrid, %d level%s; cell sizes in the file's unit (level h holds diameters in (s_h-1, s_h]):\n",
               search == Search::top_down ? "Top-Down" : "Bottom-Up", r.levels(), r.levels() == 1 ? "" : "s");
@@ -190,8 +194,9 @@ void run_recommend(const RecommendOptions& o) {
   const std::optional<TimeModelUse> time = choose_time_model(o.cost, k, in.d, double(s.size()));
   // Positions known and no --nu: the model over the particles' own density
   // field (docs/MODEL.md section 14).
+  // A tilted box: the model of the mapped packing its grid searches (section 12).
   Recommendation r = field ? recommend_for_field(*field, ModelParams{in.d, in.nu, k.K, search}, time)
-                           : recommend_cell_sizes(s.radii, ModelParams{in.d, in.nu, k.K, search}, time);
+                           : recommend_tilted(s.radii, ModelParams{in.d, in.nu, k.K, search}, tilt_inflation(s), time);
   add_lammps_collections(r, s.radii, in.d, r.field ? r.field->nu_effective : in.nu);
   if (o.json) print_json(o, s, in, k, r, search, first, last);
   else print_text(o, s, in, k, r, search, first, last);
