@@ -172,6 +172,29 @@ TEST(DensityField, RecommendCommandUsesTheFieldAndSaysSo) {
   EXPECT_NE(c.err.find("field model"), std::string::npos) << c.err;
 }
 
+// --boundary for a file that does not say its own (MercuryDPM's .data): the
+// field of the walled bed, the sizes recommend_for_field gives it; a file
+// that says another boundary, or a word not a boundary, is refused (exit 2).
+TEST(DensityField, RecommendCommandTakesTheBoundaryAFileDoesNotSay) {
+  const std::string bed = kBeds + "mdpm3d_o5_s1.data";
+  const Result js = hgrid_run("recommend " + bed + " --frame 0 --boundary walls --K 0.2 --json", kNoCalibration);
+  ASSERT_EQ(js.status, 0) << js.err;
+  const auto j = nlohmann::json::parse(js.out);
+  EXPECT_EQ(j["boundary"], "walls");
+  const ParticleSet s = read_bed(Bed{"mdpm3d_o5_s1.data", 0});
+  const Recommendation r = recommend_for_field(field_of(s), ModelParams{3, 0.5, kK});
+  EXPECT_EQ(j["sizes"].get<std::vector<double>>(), r.sizes);
+  EXPECT_DOUBLE_EQ(j["field"]["mean_local_nu"].get<double>(), r.field->summary.mean_nu);
+  const auto assumed = nlohmann::json::parse(hgrid_run("recommend " + bed + " --frame 0 --K 0.2 --json", kNoCalibration).out);
+  EXPECT_NE(assumed["field"]["mean_local_nu"].get<double>(), r.field->summary.mean_nu);  // periodic, assumed
+  const Result says = hgrid_run("recommend " + kBeds + "bed3d_o5_s1.dump --boundary periodic", kNoCalibration);
+  EXPECT_EQ(says.status, 2);
+  EXPECT_NE(says.err.find("boundary"), std::string::npos) << says.err;
+  const Result bad = hgrid_run("recommend " + bed + " --boundary sideways", kNoCalibration);
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("boundary"), std::string::npos) << bad.err;
+}
+
 // A run over several snapshots: the cost per particle over all of them,
 // each snapshot weighed by its particles (exactly the single snapshots'
 // costs averaged), within the target of what the grid counts over them.

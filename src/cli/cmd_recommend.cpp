@@ -9,6 +9,7 @@
 
 #include "common.hpp"
 #include "hgridlab/calibration/calibration.hpp"
+#include "hgridlab/grid/geometry.hpp"
 #include "hgridlab/calibration/k_choice.hpp"
 #include "hgridlab/advice/recommend.hpp"
 #include "hgridlab/advice/recommend_json.hpp"
@@ -23,6 +24,7 @@ struct RecommendOptions {
   std::string file, K, search = "topdown", cost = "auto";
   std::optional<std::int64_t> frame;
   std::string frames;  // FIRST:LAST, the snapshots the sizes are chosen over
+  std::string boundary;  // for a file that does not say its own
   std::optional<double> nu;
   std::optional<int> d;
   double skin = 0;
@@ -166,7 +168,20 @@ void run_recommend(const RecommendOptions& o) {
     }
     range.emplace(a, b);
   }
-  ParticleSet s = read_particles(o.file, Isolation::child_process, range ? std::optional<std::int64_t>(range->first) : o.frame);
+  // --boundary: for a file that does not say its boundary (a MercuryDPM
+  // .data file, a table without `# boundary`); one that says another is refused.
+  const std::optional<Boundary> given_boundary =
+      o.boundary.empty() ? std::nullopt : std::optional<Boundary>(parse_boundary(o.boundary, "boundary"));
+  const auto with_boundary = [&](ParticleSet p) {
+    if (!given_boundary) return p;
+    if (p.mixed_boundary || (p.boundary && *p.boundary != *given_boundary))
+      throw InputError("boundary", o.file + " says its boundary (" + boundary_description(p) +
+                                       "); --boundary is for files that do not");
+    p.boundary = given_boundary;
+    return p;
+  };
+  ParticleSet s = with_boundary(
+      read_particles(o.file, Isolation::child_process, range ? std::optional<std::int64_t>(range->first) : o.frame));
   std::optional<DensityField> field = o.nu || o.homogeneous ? std::nullopt : density_field_of(s);
   std::size_t first = s.frame, last = s.frame;
   if (range) {
@@ -179,7 +194,7 @@ void run_recommend(const RecommendOptions& o) {
     if (!field) throw InputError("frames", o.file + " has no positions in an untilted box: no density field to average");
     first = std::size_t(a), last = std::size_t(b);
     for (std::int64_t k = a + 1; k <= b; ++k) {
-      s = read_particles(o.file, Isolation::child_process, k);
+      s = with_boundary(read_particles(o.file, Isolation::child_process, k));
       const std::optional<DensityField> more = density_field_of(s);
       if (!more || more->d() != field->d())
         throw InputError("frames", "snapshot " + std::to_string(k) + " of " + o.file + " has no positions or another dimension");
@@ -217,6 +232,9 @@ void register_recommend_commands(CLI::App& app) {
   sub->add_option("--nu", o->nu,
                   "packing fraction of a homogeneous packing (default: the particles' own density field when the file "
                   "has positions and an untilted box, else the box's; needed when it has none)");
+  sub->add_option("--boundary", o->boundary,
+                  "walls|periodic: the boundary of a file that does not say its own (a MercuryDPM .data file, a "
+                  "table without '# boundary'; else periodic is assumed); a file that says another is refused");
   sub->add_flag("--homogeneous", o->homogeneous, "take nu from the box even when the file has positions (the paper's model)");
   sub->add_option("--d", o->d, "dimension, 2 or 3 (default: from the file)");
   sub->add_option("--K", o->K, std::string(kKHelp) + " (default: the stored calibration if any, else 0.2)");
