@@ -101,10 +101,7 @@ py::dict recommend(const DoubleArray& radii, std::optional<double> nu, int d, co
     if (!nu) nu = balls / volume;
     std::array<double, 3> t{};
     for (std::size_t k = 0; k < tilt->size(); ++k) t[k] = (*tilt)[k];
-    double c = 1;
-    if (d == 2) c = TiltedBox<2>{{b[0], b[1]}, t}.inflation();
-    else c = TiltedBox<3>{{b[0], b[1], b[2]}, t}.inflation();
-    r = recommend_tilted(r_list, ModelParams{d, *nu, k.K, s}, c, time);
+    r = recommend_tilted(r_list, ModelParams{d, *nu, k.K, s}, tilt_inflation(d, b, t), time);
   } else if (positions && !nu) {
     if (positions->ndim() != 2 || positions->shape(1) != d)
       throw InputError("positions", "must be an N x d array (d = " + std::to_string(d) + ")");
@@ -432,14 +429,8 @@ class PyContactList {
       const std::vector<double> radii(r.begin(), r.end());
       const ModelParams mp{d_, nu, choose_K("").K, Search::top_down};
       if (!l.box().triclinic) l.set_sizes(recommend_for_field(field_of(l, x, r), mp).sizes);
-      else {  // the mapped packing its tilted grid searches, at the box's tilt now
-        const auto& b = l.box();
-        std::array<double, 3> tilt = b.tilt;
-        double c = 1;
-        if constexpr (L::dimension == 2) c = TiltedBox<2>{b.side, {tilt[0], 0.0, 0.0}}.inflation();
-        else c = TiltedBox<3>{b.side, tilt}.inflation();
-        l.set_sizes(recommend_tilted(radii, mp, c).sizes);
-      }
+      else  // the mapped packing its tilted grid searches, at the box's tilt now
+        l.set_sizes(recommend_tilted(radii, mp, tilt_inflation(d_, l.box().side, l.box().tilt)).sizes);
     }
     if (auto_skin_ && !tuned_once_) {
       l.set_skin(SkinTuner::first_skin(r), l.params().skin_rel);

@@ -91,10 +91,16 @@ Recommendation recommend_tilted(const std::vector<double>& radii, const ModelPar
   return out;
 }
 
+double tilt_inflation(int d, std::span<const double> length, const std::array<double, 3>& tilt) {
+  if (d != 2 && d != 3) throw InputError("d", "must be 2 or 3");
+  if (length.size() < static_cast<std::size_t>(d)) throw InputError("box", "must hold d = " + std::to_string(d) + " side lengths");
+  if (d == 2) return TiltedBox<2>{{length[0], length[1]}, {tilt[0], 0.0, 0.0}}.inflation();
+  return TiltedBox<3>{{length[0], length[1], length[2]}, tilt}.inflation();
+}
+
 double tilt_inflation(const ParticleSet& s) {
   if (!s.tilted() || !s.box) return 1.0;
-  if (s.d == 2) return TiltedBox<2>{{(*s.box)[0], (*s.box)[1]}, {s.tilt[0], 0.0, 0.0}}.inflation();
-  return TiltedBox<3>{{(*s.box)[0], (*s.box)[1], (*s.box)[2]}, s.tilt}.inflation();
+  return tilt_inflation(s.d, *s.box, s.tilt);
 }
 
 Recommendation recommend_for_field(const DensityField& field, const ModelParams& p,
@@ -199,8 +205,7 @@ Recommendation recommend_for_packing(const Packing& p, double K, Search search) 
   const ModelParams mp{p.d, std::min(1.0, p.packing_fraction()), K, search};
   const std::optional<DensityField> field = density_field_of(p);
   Recommendation r = field          ? recommend_for_field(*field, mp)
-                     : p.tilted()     ? recommend_tilted(p.radii, mp, p.d == 2 ? p.tilted_box<2>().inflation()
-                                                                              : p.tilted_box<3>().inflation())
+                     : p.tilted()     ? recommend_tilted(p.radii, mp, tilt_inflation(p.d, p.box, p.tilt))
                                       : recommend_cell_sizes(p.radii, mp);
   add_lammps_collections(r, p.radii, p.d, r.field ? r.field->nu_effective : mp.nu);
   return r;

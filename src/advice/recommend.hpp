@@ -2,7 +2,9 @@
 // Bottom-Up) grid for a list of radii, in the radii's own unit, with the
 // predicted cost and the predicted speed-up over the single-level linked cell.
 #pragma once
+#include <array>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -95,8 +97,10 @@ Recommendation recommend_for_field(const DensityField& field, const ModelParams&
 Recommendation recommend_tilted(const std::vector<double>& radii, const ModelParams& p, double inflation,
                                 const std::optional<TimeModelUse>& time = std::nullopt);
 
-/// c of a file's tilted box (TiltedBox::inflation), 1 for an untilted one
-/// or none.
+/// c of a d-dimensional box with side lengths `length` (its first d) and
+/// tilts xy, xz, yz (2D: xy only): TiltedBox::inflation, 1 untilted.
+double tilt_inflation(int d, std::span<const double> length, const std::array<double, 3>& tilt);
+/// The same for a file's box (1 for none).
 double tilt_inflation(const ParticleSet& s);
 
 /// The density field of a file's particles (positions in an untilted box),
