@@ -457,6 +457,72 @@ void check_sheared(std::uint64_t seed, bool lees_edwards, int threads) {
   EXPECT_LT(list.stats().builds, list.stats().steps);
 }
 
+/// A tilted box narrower than the inflated diameters reach (a third to
+/// nine tenths of 4 R_max wide): few large spheres moving, a Lees-Edwards
+/// offset growing through the flip; at every step the contacts equal the
+/// tilted brute force and a fresh TiltedHGrid's, and each contact's image
+/// shift gives its displacement.
+template <int D>
+void check_narrow_sheared(std::uint64_t seed, double width_over_4r, int threads) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double rmax = 1.0, skin = 0.3;
+  ListBox<D> box;
+  for (int k = 0; k < D; ++k) box.side[k] = width_over_4r * 4 * (rmax + skin / 2) * (1 + 0.25 * k);
+  box.periodic.fill(true);
+  box.triclinic = true;
+  double offset = 0.4 * box.side[0];
+  box.tilt = TiltedBox<D>::lees_edwards(box.side, offset).tilt;
+  if constexpr (D == 3) box.tilt[2] = -0.3 * box.side[1];
+  std::vector<Sphere<D>> user(D == 2 ? 40 : 60);
+  for (std::size_t i = 0; i < user.size(); ++i) {
+    for (int k = 0; k < D; ++k) user[i].x[k] = u(rng) * box.side[k];
+    user[i].r = i == 0 ? rmax : 0.2 + 0.8 * u(rng);
+  }
+  ContactList<D> list(box, ContactListParams{{}, Search::bottom_up, threads, skin, 0.0});
+  std::uniform_real_distribution<double> step(-1.0, 1.0);
+  for (int t = 0; t < 60; ++t) {
+    if (t > 0) {
+      for (auto& p : user)
+        for (int k = 0; k < D; ++k) p.x[k] += 0.04 * step(rng);
+      offset += 0.01 * box.side[0];  // past lx/2 after 10 steps: the tilt flips
+      box.tilt[0] = TiltedBox<D>::lees_edwards(box.side, offset).tilt[0];
+      list.set_box(box);
+    }
+    list.update(user);
+    TiltedBox<D> tb{box.side, box.tilt};
+    std::vector<Pair> want;
+    brute_force_pairs_tilted<D>(user, tb, [&](std::uint32_t i, std::uint32_t j) { want.emplace_back(i, j); });
+    const TiltedHGrid<D> fresh(user, tb, GridParams{doubling_sizes(0.2, rmax), Search::top_down, 1});
+    std::vector<Pair> grid;
+    fresh.for_each_pair([&](std::uint32_t i, std::uint32_t j) { grid.emplace_back(i, j); });
+    std::sort(grid.begin(), grid.end());
+    const auto got = list_pairs(list);
+    if (got != want || got != grid) {
+      ADD_FAILURE() << "D = " << D << ", step " << t << ", seed " << seed << ", width " << tb.min_width()
+                    << ": " << got.size() << " contacts, brute force " << want.size() << ", fresh grid "
+                    << grid.size();
+      return;
+    }
+    for (const auto& [i, j] : got) {
+      const auto d = list.displacement(i, j);
+      double d2 = 0;
+      for (int k = 0; k < D; ++k) d2 += d[k] * d[k];
+      ASSERT_LT(d2, (user[i].r + user[j].r) * (user[i].r + user[j].r)) << "pair " << i << "," << j << " step " << t;
+    }
+  }
+  EXPECT_LT(list.stats().builds, list.stats().steps);
+}
+
+TEST(ContactList, TiltedBoxesNarrowerThanTheInflatedDiameters) {
+  for (const int threads : {1, 2})
+    for (const double w : {0.9, 0.6, 0.35}) {
+      SCOPED_TRACE("threads " + std::to_string(threads) + ", width / 4 R_max " + std::to_string(w));
+      check_narrow_sheared<2>(401, w, threads);
+      check_narrow_sheared<3>(402, w, threads);
+    }
+}
+
 TEST(ContactList, LeesEdwardsAndDriftingTiltsEveryStep) {
   for (const int threads : {1, 2}) {
     SCOPED_TRACE("threads " + std::to_string(threads));

@@ -190,14 +190,11 @@ TEST(HGridTilted, Inflation) {
   EXPECT_NEAR(t.width(2), 14.0, 1e-12);  // the z faces are not tilted
 }
 
-// A box too tilted (or too small) for the minimum image is refused.
-TEST(HGridTilted, RefusesTooNarrowABox) {
-  std::vector<Sphere<3>> s{{{1, 1, 1}, 2.0}, {{5, 5, 5}, 2.0}};
-  const TiltedBox<3> box{{20, 20, 20}, {10, 0, 0}};  // narrowest width 17.9, 4 r_max = 8: fine
-  EXPECT_NO_THROW(TiltedHGrid<3>(std::span<const Sphere<3>>(s), box, GridParams{{4.0}}));
-  s[0].r = 5.0;  // 4 r_max = 20 > 17.9
-  EXPECT_THROW(TiltedHGrid<3>(std::span<const Sphere<3>>(s), box, GridParams{{10.0}}), InputError);
-  // Beyond LAMMPS's limit (|xy| <= lx/2): refused; at it: searched.
+// Tilts beyond LAMMPS's limit and non-finite ones are refused; a box of
+// any width within it is searched.
+TEST(HGridTilted, RefusesTiltsBeyondLammpsLimit) {
+  std::vector<Sphere<3>> s{{{1, 1, 1}, 5.0}, {{5, 5, 5}, 2.0}};
+  EXPECT_NO_THROW(TiltedHGrid<3>(std::span<const Sphere<3>>(s), TiltedBox<3>{{20, 20, 20}, {10, 0, 0}}, GridParams{{10.0}}));
   EXPECT_THROW(TiltedHGrid<3>(std::span<const Sphere<3>>(s), TiltedBox<3>{{40, 40, 40}, {20.5, 0, 0}}, GridParams{{10.0}}),
                InputError);
   EXPECT_NO_THROW(TiltedHGrid<3>(std::span<const Sphere<3>>(s), TiltedBox<3>{{40, 40, 40}, {0, -20, 20}}, GridParams{{10.0}}));
@@ -205,6 +202,72 @@ TEST(HGridTilted, RefusesTooNarrowABox) {
   std::vector<Sphere<2>> s2{{{1, 1}, 1.0}};
   EXPECT_THROW(TiltedHGrid<2>(std::span<const Sphere<2>>(s2), bad, GridParams{{2.0}}), InputError);
 }
+
+// How many shifts around the rounding a reach needs: none below half the
+// narrowest width, one up to one and a half widths, two beyond.
+TEST(HGridTilted, ImageReach) {
+  const TiltedBox<2> box{{10.0, 10.0}, {5.0, 0, 0}};  // widths 8.94 (x faces), 10 (y faces)
+  const double w = box.width(0);
+  EXPECT_NEAR(w, 10 / std::sqrt(1.25), 1e-12);
+  EXPECT_EQ(box.image_reach(0.49 * w)[0], 0);
+  EXPECT_EQ(box.image_reach(0.49 * w)[1], 0);
+  EXPECT_EQ(box.image_reach(0.51 * w)[0], 1);
+  EXPECT_EQ(box.image_reach(1.49 * w)[0], 1);
+  EXPECT_EQ(box.image_reach(1.51 * w)[0], 2);
+}
+
+/// Boxes narrower than four largest radii (down to a third of it): few,
+/// large spheres, so that pairs reach through several lattice images; the
+/// pair sets against the brute force (which tries 1 + ceil((r_i + r_j) / w)
+/// shifts either side), 2D and 3D, both directions, 1 and 2 threads.
+template <int D, Search S>
+void narrow_sweep() {
+  std::uint64_t seed = 9000 + 100 * D + static_cast<int>(S);
+  int narrow_seen = 0, reach2_seen = 0;
+  for (const auto& tilt : tilt_cases<D>())
+    for (double width_over_4r : {0.9, 0.6, 0.35}) {
+      ++seed;
+      std::mt19937_64 rng(seed);
+      std::uniform_real_distribution<double> u(0.0, 1.0);
+      const double rmax = 1.0, side = width_over_4r * 4 * rmax;
+      TiltedBox<D> box{};
+      for (int k = 0; k < D; ++k) box.length[k] = side * (1 + 0.2 * k);
+      box.tilt[0] = tilt[0] * box.length[0];
+      if constexpr (D == 3) {
+        box.tilt[1] = tilt[1] * box.length[0];
+        box.tilt[2] = tilt[2] * box.length[1];
+      }
+      std::vector<Sphere<D>> s(D == 2 ? 60 : 80);
+      for (std::size_t i = 0; i < s.size(); ++i) {
+        std::array<double, D> f{};
+        for (auto& v : f) v = u(rng) + (i % 4 == 0 ? -1.0 : 0.0);  // some in another image
+        s[i].x = box.cartesian(f);
+        s[i].r = i == 0 ? rmax : 0.2 + 0.8 * u(rng);
+      }
+      SCOPED_TRACE(::testing::Message() << "seed=" << seed << " d=" << D << " " << to_string(S) << " tilt=("
+                                        << tilt[0] << "," << tilt[1] << "," << tilt[2] << ") width "
+                                        << box.min_width() << " for 4 r_max = " << 4 * rmax);
+      if (box.min_width() < 4 * rmax) ++narrow_seen;
+      const auto reach = box.image_reach(2 * rmax);
+      if (*std::max_element(reach.begin(), reach.end()) >= 2) ++reach2_seen;
+      const auto expect = brute_tilted<D>(s, box);
+      ASSERT_FALSE(expect.empty());
+      for (int L : {1, 2})
+        for (int threads : {1, 2}) {
+          const auto [got, c] = tilted_pairs<D, S>(s, box, exponential_sizes(L, 0.2, rmax), threads);
+          ASSERT_EQ(std::adjacent_find(got.begin(), got.end()), got.end()) << "a pair was reported twice";
+          ASSERT_EQ(got, expect) << "L = " << L << ", " << threads << " threads";
+          ASSERT_EQ(c.contacts, expect.size());
+        }
+    }
+  EXPECT_GT(narrow_seen, 0);
+  EXPECT_GT(reach2_seen, 0);
+}
+
+TEST(HGridTilted, NarrowBoxesD2TopDown) { narrow_sweep<2, Search::top_down>(); }
+TEST(HGridTilted, NarrowBoxesD2BottomUp) { narrow_sweep<2, Search::bottom_up>(); }
+TEST(HGridTilted, NarrowBoxesD3TopDown) { narrow_sweep<3, Search::top_down>(); }
+TEST(HGridTilted, NarrowBoxesD3BottomUp) { narrow_sweep<3, Search::bottom_up>(); }
 
 }  // namespace
 }  // namespace hgrid::test

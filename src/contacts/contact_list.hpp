@@ -222,7 +222,9 @@ class ContactList {
   Vec image_shift(std::uint32_t i, std::uint32_t j) const {
     if (box_.triclinic) {
       const TiltedBox<D> tb = tilted_box(box_);
-      return tb.cartesian(detail::nearest_shift<D>(tb, s_[i].x, s_[j].x));
+      Vec n;
+      detail::nearest_image<D>(tb, s_[i].x, s_[j].x, tb.image_reach(s_[i].r + s_[j].r), n);
+      return tb.cartesian(n);
     }
     Vec out{};
     for (int k = 0; k < D; ++k)
@@ -271,7 +273,7 @@ class ContactList {
     if (box.triclinic) {
       for (int k = 0; k < D; ++k)
         if (!box.periodic[k]) throw InputError("periodic", "a triclinic box is periodic on every axis");
-      tilted_box(box).check(0.0);  // finite tilts within LAMMPS's limit
+      tilted_box(box).check();  // finite tilts within LAMMPS's limit
     }
   }
   static TiltedBox<D> tilted_box(const ListBox<D>& b) {
@@ -413,7 +415,12 @@ class ContactList {
       for (const double m : block_min_) two_smallest(m, m1, m2);
       double shift = 0, scale = 0;  // how far the periodic sides' (and tilts') changes move an image
       for (int k = 0; k < D; ++k) scale = std::max(scale, box_.side[k] + std::abs(box_.origin[k]));
-      if (box_.triclinic) {  // the lattice's columns' changes, each image at most one column away per axis
+      if (box_.triclinic) {
+        // The lattice's columns' changes times how many columns away a
+        // candidate's image can lie along each: the centres wrapped into
+        // the cell differ by less than one column in fractional terms, and
+        // an image closer than 2 R_max by less than 2 R_max / width(k)
+        // more (one column unless the box is narrower than 2 R_max).
         const TiltedBox<D> now = tilted_box(box_), then{side_built_, tilt_built_};
         for (int k = 0; k < D; ++k) {
           std::array<double, D> e{};
@@ -421,7 +428,8 @@ class ContactList {
           const Vec a = now.cartesian(e), b = then.cartesian(e);
           double c2 = 0;
           for (int q = 0; q < D; ++q) c2 += (a[q] - b[q]) * (a[q] - b[q]);
-          shift += std::sqrt(c2);
+          const double columns = std::max(1.0, std::ceil(2 * rbig_max_ * (1 + kImageReachRelMargin) / then.width(k)));
+          shift += columns * std::sqrt(c2);
         }
       } else {
         double shift2 = 0;
@@ -530,8 +538,8 @@ class ContactList {
     if (n > 0) {
       if (box_.triclinic) {
         // The tilted grid (grid/tilted.hpp): made anew at each build, as its
-        // tilts change (it refuses a box narrower than twice the largest
-        // inflated diameter: InputError naming the box, the list unchanged).
+        // tilts change; a box narrower than the inflated spheres reach has
+        // further images searched there and in the test.
         const auto t0 = Clock::now();
         gt_.emplace(gspan, tilted_box(box_), gp);
         stats_.seconds_grid += seconds_since(t0);
@@ -603,11 +611,14 @@ class ContactList {
                 });
       return;
     }
+    double r_max = 0;
+    for (const auto& p : s_) r_max = std::max(r_max, p.r);
+    const std::array<int, D> reach = tb.image_reach(2 * r_max);  // shifts around the rounding (none in a wide box)
     test_with([s = s_.data()](std::uint32_t i) { return s[i]; },
-              [&tb, s = s_.data()](const Sphere<D>& p, std::uint32_t j) {
-                const auto sh = detail::nearest_shift<D>(tb, p.x, s[j].x);
+              [&tb, &reach, s = s_.data()](const Sphere<D>& p, std::uint32_t j) {
+                Vec sh;
                 const double rs = p.r + s[j].r;
-                return detail::tilted_dist2<D>(tb, p.x, s[j].x, sh) < rs * rs;
+                return detail::nearest_image<D>(tb, p.x, s[j].x, reach, sh) < rs * rs;
               });
   }
 

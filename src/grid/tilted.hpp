@@ -8,12 +8,17 @@
 // inside a sphere of radius c r, c = the largest singular value of A (1 at
 // zero tilt); the grid searches those spheres with its cell sizes times c
 // (so every particle keeps its level of insertion), and each pair it finds
-// is tested again with the lattice's minimum image. That image is exact for
-// every overlapping pair when 2 r_max is below half the box's narrowest
-// perpendicular width: a vector shorter than half of width k has fractional
-// coordinate k in (-1/2, 1/2), so rounding the fractional coordinates finds
-// it, and the grid's per-axis minimum image in the mapped box is the same
-// rounding. docs/MODEL.md section 12 states what it does to the work.
+// is tested again with the lattice's nearest image. Rounding the fractional
+// coordinates finds that image for every overlapping pair when 2 r_max is
+// below half the box's narrowest perpendicular width: a vector shorter than
+// half of width k has fractional coordinate k in (-1/2, 1/2). A narrower box
+// (LAMMPS's own boxes, sheared by fix deform, get there; so does a contact
+// list's skin) has the shifts around the rounding tried as well, as many as
+// 2 r_max can reach (TiltedBox::image_reach): the box's width is not
+// limited. The grid's per-axis minimum image in the mapped box is the
+// image nearest there, never farther than the lattice's nearest image
+// mapped, so the grid finds every pair at any width. docs/MODEL.md
+// section 12 states what it does to the work.
 #pragma once
 #include <algorithm>
 #include <array>
@@ -42,7 +47,11 @@ class TiltedHGrid {
  public:
   TiltedHGrid(std::span<const Sphere<D>> spheres, const TiltedBox<D>& box, const GridParams& params)
       : box_(box), c_(box.inflation()), x_(spheres.size()), r_(spheres.size()),
-        grid_(mapped(spheres, box, params, x_, r_, c_), box.length, scaled(params, c_)) {}
+        grid_(mapped(spheres, box, params, x_, r_, c_), box.length, scaled(params, c_)) {
+    double r_max = 0;
+    for (const double r : r_) r_max = std::max(r_max, r);
+    reach_ = box_.image_reach(2 * r_max);
+  }
 
   /// f(i, j) or f(t, i, j) (base/threads.hpp) for every pair i < j closer
   /// than r_i + r_j under the lattice's minimum image, once each. Counters:
@@ -58,9 +67,9 @@ class TiltedHGrid {
     Counters c = grid_.template query<S, Count>(
         [&](int t, std::uint32_t i, std::uint32_t j) {
           if (c_ != 1.0) {
-            const auto n = detail::nearest_shift<D>(box_, x_[i], x_[j]);
+            std::array<double, D> n;
             const double s = r_[i] + r_[j];
-            if (!(detail::tilted_dist2<D>(box_, x_[i], x_[j], n) < s * s)) return;
+            if (!(detail::nearest_image<D>(box_, x_[i], x_[j], reach_, n) < s * s)) return;
           }
           ++found[static_cast<std::size_t>(t)].n;
           if constexpr (kTakesThreadIndex<F>) f(t, i, j);
@@ -95,9 +104,7 @@ class TiltedHGrid {
  private:
   static std::vector<Sphere<D>> mapped(std::span<const Sphere<D>> in, const TiltedBox<D>& box, const GridParams&,
                                        std::vector<std::array<double, D>>& x, std::vector<double>& r, double c) {
-    double r_max = 0;
-    for (const auto& s : in) r_max = std::max(r_max, s.r);
-    box.check(2 * r_max);
+    box.check();
     std::vector<Sphere<D>> out(in.size());
     for (std::size_t i = 0; i < in.size(); ++i) {
       x[i] = in[i].x;
@@ -121,39 +128,45 @@ class TiltedHGrid {
   std::vector<std::array<double, D>> x_;
   std::vector<double> r_;
   HGrid<D, Boundary::periodic> grid_;
+  std::array<int, D> reach_{};  // shifts tried around the rounding (TiltedBox::image_reach of 2 r_max)
 };
 
 /// The O(N^2) reference for a tilted box: f(i, j), i < j, for every pair
-/// closer than r_i + r_j in some image, trying the 3^d lattice shifts around
-/// the fractional rounding of the displacement (so it does not rest on the
-/// rounding alone). Returns the pairs tested. H is upper triangular, so a
-/// shift's last Cartesian component depends on its last lattice coordinate
-/// only, the one before on the last two: a shift whose component alone
-/// reaches r_i + r_j is skipped with those after it (its distance can only be
-/// larger), and the rest get the full test.
+/// closer than r_i + r_j in some image, trying the lattice shifts around the
+/// fractional rounding of the displacement (so it does not rest on the
+/// rounding alone): 1 either side on every axis, or 1 + ceil((r_i + r_j) /
+/// the narrowest width) where the pair reaches past half of it (more than
+/// TiltedBox::image_reach asks, and counted by other means). Returns the
+/// pairs tested. H is upper triangular, so a shift's last Cartesian
+/// component depends on its last lattice coordinate only, the one before on
+/// the last two: a shift whose component alone reaches r_i + r_j is skipped
+/// with those after it (its distance can only be larger), and the rest get
+/// the full test.
 template <int D, class F>
 std::uint64_t brute_force_pairs_tilted(std::span<const Sphere<D>> s, const TiltedBox<D>& box, F&& f) {
   const std::size_t n = s.size();
+  const double w = box.min_width();
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n; ++j) {
       const auto base = detail::nearest_shift<D>(box, s[i].x, s[j].x);
       const double sum = s[i].r + s[j].r, sum2 = sum * sum;
+      const int M = sum < 0.5 * w ? 1 : 1 + static_cast<int>(std::ceil(sum / w));
       std::array<double, D> shift = base;
       bool hit = false;
-      for (int mz = -1; mz <= 1 && !hit; ++mz) {
+      for (int mz = -M; mz <= M && !hit; ++mz) {
         shift[D - 1] = base[D - 1] + mz;
         // The components as TiltedBox::cartesian and tilted_dist2 form them
         // (the same expressions, so a skip never drops a pair the full test keeps).
         const double ez = s[j].x[D - 1] - s[i].x[D - 1] + box.length[D - 1] * shift[D - 1];
         if (ez * ez >= sum2) continue;
-        constexpr int kMid = D == 3 ? 1 : 0;  // in 2D no middle axis: one pass
+        const int kMid = D == 3 ? M : 0;  // in 2D no middle axis: one pass
         for (int my = -kMid; my <= kMid && !hit; ++my) {
           if constexpr (D == 3) {
             shift[1] = base[1] + my;
             const double ey = s[j].x[1] - s[i].x[1] + (box.length[1] * shift[1] + box.tilt[2] * shift[2]);
             if (ey * ey >= sum2) continue;
           }
-          for (int mx = -1; mx <= 1; ++mx) {
+          for (int mx = -M; mx <= M; ++mx) {
             shift[0] = base[0] + mx;
             if (detail::tilted_dist2<D>(box, s[i].x, s[j].x, shift) < sum2) {
               f(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));

@@ -24,6 +24,10 @@ inline constexpr double kTiltLimitRelTol = 1e-12;
 /// value, so that rounding (~1e-15) cannot make a mapped sphere smaller than
 /// the ellipsoid it stands for (a larger sphere only adds candidates).
 inline constexpr double kInflationRelMargin = 1e-9;
+/// How much a reach is raised before the shifts around the rounding are
+/// counted (TiltedBox::image_reach), so that rounding in the fractional
+/// coordinates (~1e-15) cannot leave the nearest image one shift outside.
+inline constexpr double kImageReachRelMargin = 1e-9;
 
 /// The tilts a box of dimension d has: {xy} (2D) or {xy, xz, yz} (3D), as
 /// files and reports list them.
@@ -165,11 +169,25 @@ struct TiltedBox {
     return "";
   }
 
+  /// How many lattice shifts either side of the fractional rounding
+  /// (detail::nearest_shift) the nearest image of a displacement shorter
+  /// than `reach` can lie, per axis k: the rounding leaves fractional
+  /// coordinate k within 1/2 of 0 and the image's lies within reach /
+  /// width(k) of it, so the two shifts differ by less than reach / width(k)
+  /// + 1/2. 0 on every axis when reach is below half the narrowest width
+  /// (the rounding alone finds the image); 1 up to one and a half widths.
+  std::array<int, D> image_reach(double reach) const {
+    std::array<int, D> m{};
+    for (int k = 0; k < D; ++k)
+      m[k] = std::max(0, static_cast<int>(std::ceil(reach * (1 + kImageReachRelMargin) / width(k) + 0.5)) - 1);
+    return m;
+  }
+
   /// Throws InputError unless the lengths are finite and > 0, the tilts
-  /// finite (2D: xz = yz = 0), and, when tilted, the box wide enough for the
-  /// minimum image of pairs up to `d_max` apart (d_max < half the narrowest
-  /// width; an orthogonal box is the HGrid's, which needs no such margin).
-  void check(double d_max) const {
+  /// finite (2D: xz = yz = 0) and within LAMMPS's limit. A box of any
+  /// width is searched: where pairs reach past half its narrowest width,
+  /// further images are tried (image_reach).
+  void check() const {
     static const char* const name[3] = {"lx", "ly", "lz"};
     for (int k = 0; k < D; ++k)
       if (!(std::isfinite(length[k]) && length[k] > 0))
@@ -180,10 +198,6 @@ struct TiltedBox {
       if (D == 2 && k > 0 && tilt[k] != 0) throw InputError("box", std::string(tname[k]) + " tilt must be 0 in 2D");
     }
     if (const std::string e = beyond_limit(); !e.empty()) throw InputError("box", e);
-    if (tilted() && !(d_max < 0.5 * min_width()))
-      throw InputError("box", "the tilted box's narrowest width " + std::to_string(min_width()) +
-                                  " must exceed twice the largest diameter (" + std::to_string(2 * d_max) +
-                                  "): tilts nearer 0, or a larger box");
   }
 };
 
@@ -211,6 +225,42 @@ inline std::array<double, D> nearest_shift(const TiltedBox<D>& box, const std::a
   std::array<double, D> n = box.fractional(dx);
   for (auto& v : n) v = -std::nearbyint(v);
   return n;
+}
+
+/// The nearest lattice image of b seen from a among the shifts n0 + o,
+/// |o_k| <= m_k, around the fractional rounding n0 = nearest_shift(a, b)
+/// (m from TiltedBox::image_reach): its squared length (tilted_dist2), and
+/// its shift in `shift`. The rounding's image unless another is strictly
+/// nearer; with m = 0 the rounding's alone, as when the box is wide.
+template <int D>
+inline double nearest_image(const TiltedBox<D>& box, const std::array<double, D>& a, const std::array<double, D>& b,
+                            const std::array<int, D>& m, std::array<double, D>& shift) {
+  const std::array<double, D> n0 = nearest_shift<D>(box, a, b);
+  shift = n0;
+  double best = tilted_dist2<D>(box, a, b, n0);
+  bool wide = true;
+  for (int k = 0; k < D; ++k) wide = wide && m[k] == 0;
+  if (wide) return best;
+  std::array<int, D> o{};
+  for (int k = 0; k < D; ++k) o[k] = -m[k];
+  while (true) {
+    std::array<double, D> n = n0;
+    for (int k = 0; k < D; ++k) n[k] += o[k];
+    if (const double s = tilted_dist2<D>(box, a, b, n); s < best) {
+      best = s;
+      shift = n;
+    }
+    int k = 0;  // the next offset, odometer-wise
+    for (; k < D; ++k) {
+      if (o[k] < m[k]) {
+        ++o[k];
+        break;
+      }
+      o[k] = -m[k];
+    }
+    if (k == D) break;
+  }
+  return best;
 }
 }  // namespace detail
 

@@ -29,7 +29,7 @@ void validate(Packing& p, std::uint64_t first_index) {
       throw InputError("box", "side " + std::to_string(a + 1) + " must be finite and > 0");
   if (p.tilted()) {
     if (p.boundary != Boundary::periodic) throw InputError("box", "a tilted box must be periodic");
-    p.d == 2 ? p.tilted_box<2>().check(0) : p.tilted_box<3>().check(0);  // finite tilts, xz = yz = 0 in 2D
+    p.d == 2 ? p.tilted_box<2>().check() : p.tilted_box<3>().check();  // finite tilts, xz = yz = 0 in 2D
   }
   if (p.positions.size() != p.radii.size() * static_cast<std::size_t>(p.d))
     throw InputError("positions", "expected " + std::to_string(p.radii.size()) + " x " + std::to_string(p.d) +
