@@ -240,9 +240,9 @@ int main(int argc, char** argv) {
               radii.size(), kNu, kOmega, frames.size(), 100 * acceptance, (unsigned long long)rounds);
   std::printf("# grid rebuilt every step: fastest sizes %s, %.3e s/step\n", base_name.c_str(), base);
   for (const SkinMeasurement& m : {m0, m1})
-    std::printf("# measured at skin %.3f r_min: %.2f steps/build, travel %.3f r_min/step, L/N %.3f, per build grid "
+    std::printf("# measured at skin %.3f r_min: %.2f steps/build, travel %.3f r_min/step (x %.3f over two), L/N %.3f, per build grid "
                 "%.3e + store %.3e s, per step test %.3e + check %.3e s\n",
-                m.skin / r_min, m.steps_per_build, m.travel_per_step / r_min, m.candidates_per_n, m.seconds_grid,
+                m.skin / r_min, m.steps_per_build, m.travel_per_step / r_min, m.travel_growth, m.candidates_per_n, m.seconds_grid,
                 m.seconds_store, m.seconds_test, m.seconds_check);
   std::printf("# model: the skin model's prediction from the two reference skins' measurements\n");
   std::printf("%10s %12s %12s %12s %12s %12s %12s %12s\n", "skin/r_min", "s/step", "model", "speed-up", "steps/build",

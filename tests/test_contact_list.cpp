@@ -207,6 +207,27 @@ TEST(ContactList, TravelIsTheMarginUsedUpPerStep) {
   list.update(s);
   EXPECT_EQ(st.builds, 5u);
   EXPECT_EQ(st.travel_steps, 6u);
+  EXPECT_EQ(st.travel_one, 0.0);  // no build came one step after another
+}
+
+// A list rebuilt at every step measures how the two largest displacements'
+// sum grows from one step to two: twice on straight lines.
+TEST(ContactList, TravelOverTwoStepsOnStraightLines) {
+  ContactList<3> list(ListBox<3>{{100, 100, 100}, {0, 0, 0}, {false, false, true}},
+                      ContactListParams{{}, Search::bottom_up, 1, 0.1, 0.0});
+  std::vector<Sphere<3>> s = {{{50, 50, 50}, 1.0}, {{53, 50, 50}, 1.0}, {{10, 10, 10}, 1.0}};
+  for (int t = 0; t <= 5; ++t) {
+    list.update(s);  // every step: each moves 0.3 > the skin
+    s[0].x[0] -= 0.3;
+    s[1].x[2] += 0.3;
+  }
+  const ContactListStats& st = list.stats();
+  EXPECT_EQ(st.builds, 6u);
+  // Builds at steps 2 ... 5 came one step after one that came one step after
+  // the build before (steps 1 ... 4 called by displacements; step 0 by the
+  // first update, step 1 is the first with one before it).
+  EXPECT_NEAR(st.travel_one, 4 * 0.6, 1e-9);
+  EXPECT_NEAR(st.travel_two, 4 * 1.2, 1e-9);
 }
 
 TEST(ContactList, CompressionGrowthAndInsertion) {

@@ -32,13 +32,32 @@ double contact_value(int d, double nu) {
   return d == 3 ? (1 - nu / 2) / (e * e * e) : (1 - 7 * nu / 16) / (e * e);
 }
 
+double structure_at_zero(int d, double nu) {
+  if (d != 2 && d != 3) throw InputError("d", "must be 2 or 3");
+  if (!(nu >= 0 && nu < 1)) throw InputError("nu", "must be in [0, 1) (got " + format_number(nu) + ")");
+  const double e = 1 - nu;
+  if (d == 3) return e * e * e * e / (1 + 4 * nu + 4 * nu * nu - 4 * nu * nu * nu + nu * nu * nu * nu);
+  return e * e * e / (1 + nu + 3 * nu * nu / 8 - nu * nu * nu / 8);
+}
+
 double shell_pairs_per_particle(const Distribution& radii, int d, double nu, double skin) {
   if (!(skin >= 0)) throw InputError("skin", "must be >= 0");
   std::array<double, 4> m{};
   // Moments over (0, r_max]: every radius (the intervals are open below).
   const double total = radii.moment(0, 0.0, radii.r_max());
   for (int k = 0; k <= d; ++k) m[k] = radii.moment(k, 0.0, radii.r_max()) / total;
-  return nu / (2 * m[d]) * contact_value(d, nu) * (mean_power(m, d, skin) - mean_power(m, d, 0.0));
+  const double per = nu / (2 * m[d]);  // pairs per particle per unit of <(a + b + s)^d>
+  // The ideal gas's shell (g = 1) and its growth at contact, d <(a + b)^(d-1)>.
+  const double bulk = per * (mean_power(m, d, skin) - mean_power(m, d, 0.0));
+  const double slope0 = per * d * mean_power(m, d - 1, 0.0);
+  // The excess over it: the pairs beyond contact the compressibility sum
+  // rule leaves, E = (S(0) - 1 + n V_excl) / 2 per particle, with the excluded
+  // volume n V_excl = nu <(a + b)^d> / <r^d>.
+  const double gc = contact_value(d, nu);
+  const double excess = 0.5 * (structure_at_zero(d, nu) - 1 + 2 * per * mean_power(m, d, 0.0));
+  if (!(gc > 1 && excess > 0 && slope0 > 0)) return gc * bulk;
+  const double xi = excess / ((gc - 1) * slope0);  // the layer that holds it: the shell's slope at contact is g_c's
+  return bulk + excess * -std::expm1(-skin / xi);
 }
 
 SkinPrediction predict_skin(const SkinMeasurement& a, const SkinMeasurement& b, const Distribution& radii, int d,
@@ -65,8 +84,11 @@ SkinPrediction predict_skin(const SkinMeasurement& a, const SkinMeasurement& b, 
   // The list's length: the two measured, joined (and continued) by the
   // shell's shape; if the larger skin's list is not the longer (two windows
   // of a changing run), proportional to the shell from the larger skin's.
-  if (l_hi > l_lo) p.candidates_per_n = std::max(0.0, l_lo + (sh - sh_lo) / (sh_hi - sh_lo) * (l_hi - l_lo));
+  // Never below the contacts: a list holds at least those (continued below
+  // s0, the shell's steep rise near contact could take it there).
+  if (l_hi > l_lo) p.candidates_per_n = l_lo + (sh - sh_lo) / (sh_hi - sh_lo) * (l_hi - l_lo);
   else p.candidates_per_n = sh_hi > 0 ? l_hi * sh / sh_hi : l_hi;
+  p.candidates_per_n = std::max(p.candidates_per_n, std::min(lo.contacts_per_n, hi.contacts_per_n));
   // Affine in the list's length: the value at L from the two measured.
   const auto at = [&](double y_lo, double y_hi) {
     const double slope = (y_hi - y_lo) / (l_hi - l_lo);
@@ -74,10 +96,13 @@ SkinPrediction predict_skin(const SkinMeasurement& a, const SkinMeasurement& b, 
     return l_hi > 0 ? y_hi * p.candidates_per_n / l_hi : y_hi;
   };
   // Steps per build: ballistic, from the measurement at the nearer skin
-  // (from its travel per step where it rebuilt at nearly every step).
+  // (from its travel per step and its growth where it rebuilt at nearly
+  // every step).
   const SkinMeasurement& near = std::abs(std::log(skin / lo.skin)) < std::abs(std::log(skin / hi.skin)) ? lo : hi;
-  if (near.steps_per_build < kCensoredSteps && near.travel_per_step > 0)
-    p.steps_per_build = std::max(1.0, skin / near.travel_per_step);
+  if (near.steps_per_build < kCensoredSteps && near.travel_per_step > 0) {
+    const double b = near.travel_growth > 0 ? std::clamp(std::log2(near.travel_growth), kRandomWalkExponent, 1.0) : 1.0;
+    p.steps_per_build = std::max(1.0, std::pow(skin / near.travel_per_step, 1 / b));
+  }
   else
     p.steps_per_build = std::max(1.0, near.steps_per_build * skin / near.skin);
   const double grid = 0.5 * (lo.seconds_grid + hi.seconds_grid), check = 0.5 * (lo.seconds_check + hi.seconds_check);

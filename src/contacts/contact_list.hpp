@@ -115,6 +115,13 @@ struct ContactListStats {
   /// use up a skin, even when the list is rebuilt at every step.
   double travel = 0;
   std::uint64_t travel_steps = 0;
+  /// Over the displacement-called builds one step after a build that came
+  /// one step after the build before it (a list rebuilt at every step): the
+  /// two largest displacements' sum over the last step and over the last
+  /// two steps. travel_two / travel_one tells how displacements grow with
+  /// time: 2 for straight lines, sqrt(2) for a random walk
+  /// (advice/skin_model.hpp).
+  double travel_one = 0, travel_two = 0;
   double seconds_check = 0;   // reading the positions, the skin check
   double seconds_build = 0;   // grid build, candidate search, storing the list
   double seconds_grid = 0;    //   of which: the grid build (HGrid::rebuild)
@@ -444,6 +451,7 @@ class ContactList {
     if (rebuild) {
       t0 = Clock::now();
       const std::uint64_t since = stats_.steps - steps_built_;
+      if (used >= 0 && since == 1 && since_built_ == 1 && xold_.size() == n) two_step_travel(n);
       build();  // may throw (sizes below the inflated diameters): nothing committed yet
       stats_.seconds_build += seconds_since(t0);
       ++stats_.builds;
@@ -451,6 +459,7 @@ class ContactList {
         stats_.travel += used;
         stats_.travel_steps += since;
       }
+      since_built_ = used >= 0 ? since : 0;
     } else {
       s_.swap(next_);
     }
@@ -479,6 +488,35 @@ class ContactList {
     stats_.contacts = nbr_.size();
     stats_.candidates_tested += cand_.size();
     return rebuild;
+  }
+
+  /// The two largest displacements' sums of the update being read (raw_)
+  /// since the last build (xref_, one step ago) and since the build before
+  /// (xold_, two steps ago), added to the stats.
+  void two_step_travel(std::size_t n) {
+    const TiltedBox<D> tb = tilted_box(box_);
+    const auto length = [&](const Vec& from, const Vec& to) {
+      double u2 = 0;
+      if (box_.triclinic) {
+        const Vec sh = tb.cartesian(detail::nearest_shift<D>(tb, from, to));
+        for (int k = 0; k < D; ++k) u2 += (to[k] - from[k] + sh[k]) * (to[k] - from[k] + sh[k]);
+      } else {
+        for (int k = 0; k < D; ++k) {
+          double u = to[k] - from[k];
+          if (box_.periodic[k]) u = detail::min_image(u, box_.side[k]);
+          u2 += u * u;
+        }
+      }
+      return std::sqrt(u2);
+    };
+    const double inf = std::numeric_limits<double>::infinity();
+    double a1 = inf, a2 = inf, b1 = inf, b2 = inf;  // the two largest, negated as two_smallest keeps them
+    for (std::size_t i = 0; i < n; ++i) {
+      two_smallest(-length(xref_[i], raw_[i]), a1, a2);
+      two_smallest(-length(xold_[i], raw_[i]), b1, b2);
+    }
+    stats_.travel_one -= a1 + a2;
+    stats_.travel_two -= b1 + b2;
   }
 
   /// The candidates of the spheres in next_ (inflated), then commits them.
@@ -578,6 +616,7 @@ class ContactList {
     });
     // Commit.
     s_.swap(next_);
+    xold_.swap(xref_);  // the build before's references, for two_step_travel
     xref_.swap(raw_);
     rbig_.resize(n);
     rbig_max_ = 0;
@@ -686,6 +725,8 @@ class ContactList {
   double rbig_max_ = 0;
   double margin_built_ = 0;        // the two smallest margins' sum at the last build
   std::uint64_t steps_built_ = 0;  // stats_.steps when it was made
+  std::uint64_t since_built_ = 0;  // the steps between the last two builds, if displacements called the last; else 0
+  std::vector<Vec> xold_;          // the references of the build before the last (two_step_travel)
   Extent<D> side_built_{};
   std::vector<Sphere<D>> gs_;        // the inflated spheres of a build
   std::vector<Sphere<D>> wrapped_;   // a triclinic box at zero tilt: the wrapped centres
