@@ -102,6 +102,45 @@ TEST(Generate, SequentialAdditionHasNoOverlapAndRespectsWalls) {
     }
 }
 
+// A bed (placement bed): the spheres rest in the bottom of their walled
+// box, packed (their own nu near the dense packing they were made at),
+// overlapping less than the relaxation's tolerance, the box's nu exact; the
+// same seed gives the same bed; a periodic box and a box nu above the
+// limit are refused.
+TEST(Generate, BedRestsOnTheFloorWithoutOverlaps) {
+  for (int d : {2, 3}) {
+    SCOPED_TRACE("d " + std::to_string(d) + " seed " + std::to_string(kGenerateSeed));
+    const PackingSpec sp = spec(d, 800, 0.15, -3, 5, Placement::bed, Boundary::walls);
+    const Packing p = generate_packing(sp);
+    EXPECT_EQ(p.str_attrs.at("method"), "rsa+growth+fire+settled");
+    EXPECT_NEAR(p.packing_fraction(), 0.15, kNuTol);
+    const PackingQuality q = assess_packing(p, nullptr);
+    EXPECT_LT(q.max_rel_overlap, kRelaxedOverlapTol);
+    const double packed = p.num_attrs.at("bed_packing_fraction");  // the nu it was made at, in the bottom
+    double top = 0, volume = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      for (int k = 0; k < d; ++k) {
+        EXPECT_GE(p.positions[i * d + k], p.radii[i] * (1 - kRelaxedOverlapTol));
+        EXPECT_LE(p.positions[i * d + k], p.box[k] - p.radii[i] * (1 - kRelaxedOverlapTol));
+      }
+      top = std::max(top, p.positions[i * d + d - 1] + p.radii[i]);
+      volume += d == 2 ? M_PI * p.radii[i] * p.radii[i] : 4 * M_PI / 3 * std::pow(p.radii[i], 3);
+    }
+    // Its height: what the packed nu takes, give or take a top layer of
+    // the largest spheres; far below the box's top.
+    const double floor_area = d == 2 ? p.box[0] : p.box[0] * p.box[1];
+    const double height = volume / (floor_area * packed);
+    const double rmax = *std::max_element(p.radii.begin(), p.radii.end());
+    EXPECT_LT(top, height + 4 * rmax);
+    EXPECT_GT(top, 0.8 * height);
+    EXPECT_LT(top, 0.5 * p.box[d - 1]);
+    EXPECT_EQ(generate_packing(sp).positions, p.positions);
+  }
+  EXPECT_THROW(generate_packing(spec(3, 500, 0.15, -3, 5, Placement::bed, Boundary::periodic)), InputError);
+  EXPECT_THROW(generate_packing(spec(3, 500, 0.35, -3, 5, Placement::bed, Boundary::walls)), InputError);
+  EXPECT_EQ(parse_placement("bed"), Placement::bed);
+}
+
 TEST(Generate, RandomPlacementKeepsCentresInsideWalls) {
   const Packing p = generate_packing(spec(3, 5000, 0.3, 0, 10, Placement::random, Boundary::walls));
   for (std::size_t i = 0; i < p.size(); ++i)

@@ -347,6 +347,10 @@ TEST_F(Hostile, SmallerOnes) {
                  "sweeps");
   expect_refused("generate --n 10 --nu 0.1 --placement excluded --method shake --out " + path("x.h5"), "method");
   expect_refused("generate --n 10 --nu 0.1 --method growth --out " + path("x.h5"), "method");
+  // A bed rests on a floor: walls, and a box it fills only in part.
+  expect_refused("generate --n 10 --nu 0.1 --placement bed --out " + path("x.h5"), "boundary");
+  expect_refused("generate --n 10 --nu 0.35 --placement bed --boundary walls --out " + path("x.h5"), "nu");
+  expect_refused("model --placement bed --omega 5", "placement");
   // When an equilibration stops: a choice, and only with --equilibrate.
   expect_refused("generate --n 10 --nu 0.1 --placement excluded --equilibrate --stop soon --out " + path("x.h5"), "stop");
   expect_refused("generate --n 10 --nu 0.1 --placement excluded --stop stationary --out " + path("x.h5"), "stop");

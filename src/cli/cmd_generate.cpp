@@ -76,7 +76,7 @@ void register_generate_commands(CLI::App& app) {
   sub->add_option("--omega", o->spec.omega, "size ratio r_max / r_min (r_min = 1), >= 1")->default_val(100.0);
   sub->add_option("--sigma", o->spec.sigma, "lognormal: sigma of ln r (median at sqrt(omega))")->default_val(0.5);
   sub->add_option("--boundary", o->boundary, "periodic|walls")->default_val("periodic");
-  sub->add_option("--placement", o->placement, "random (independent centres) | excluded (no overlaps)")
+  sub->add_option("--placement", o->placement, "random (independent centres) | excluded (no overlaps) | bed (no overlaps, settled under gravity onto the floor of the last axis; --boundary walls, --nu <= 0.3)")
       ->default_val("random");
   sub->add_option("--method", o->method,
                   "excluded: auto (sequential addition, growth + FIRE where it stalls) | rsa (sequential addition "

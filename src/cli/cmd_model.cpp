@@ -51,7 +51,10 @@ void run_model(const ModelOptions& o) {
   q.cells = parse_cell_method(o.cells);
   if (o.levels > 0) q.levels = o.levels;
   q.q = o.q;
-  q.excluded = parse_placement(o.placement, "placement") == Placement::excluded;
+  const Placement placement = parse_placement(o.placement, "placement");
+  if (placement == Placement::bed)
+    throw InputError("placement", "must be 'random' or 'excluded' for the model (a bed is not homogeneous: `hgrid recommend` on its file)");
+  q.excluded = placement == Placement::excluded;
   q.excluded_sizes = o.excluded_sizes;
   q.cost = parse_cost(o.cost);
   q.n = o.n;

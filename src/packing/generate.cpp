@@ -39,6 +39,12 @@ namespace {
 
 /// Packing fraction at which the growth route starts its sequential addition.
 constexpr double kGrowthStartNu = 0.35;
+/// The largest box nu of a bed (placement bed): its particles settle to a
+/// packing of ~0.6, so that a bed fills at most about half of its box.
+constexpr double kBedMaxNu = 0.3;
+/// A bed is first packed at this share of the random close packing estimate
+/// (rcp.hpp) in the bottom of its box, then settled.
+constexpr double kBedRcpShare = 0.85;
 /// Achieved nu must match the request to this relative error.
 
 /// Short text for messages.
@@ -54,6 +60,11 @@ void check_spec(const PackingSpec& s) {
   if (!(std::isfinite(s.nu) && s.nu > 0 && s.nu < 1)) throw InputError("nu", "must be in (0, 1) (got " + brief(s.nu) + ")");
   if (s.equilibrate && s.placement != Placement::excluded)
     throw InputError("equilibrate", "only applies to excluded-volume placement");
+  if (s.placement == Placement::bed && s.boundary != Boundary::walls)
+    throw InputError("boundary", "a bed (placement 'bed') needs walls: it rests on the floor of the last axis");
+  if (s.placement == Placement::bed && s.nu > kBedMaxNu)
+    throw InputError("nu", "a bed fills part of its box: the box's nu must be at most " + brief(kBedMaxNu) +
+                               " (got " + brief(s.nu) + ")");
   if (s.method != ExcludedMethod::automatic && s.placement != Placement::excluded)
     throw InputError("method", "only applies to excluded-volume placement");
   if (s.stop != EquilibrationStop::sweeps && !s.equilibrate)
@@ -155,6 +166,29 @@ void place_excluded(const PackingSpec& s, double rcp, detail::GenRng& rng, Packi
 }
 
 
+/// Placement bed: an excluded-volume packing at kBedRcpShare of the random
+/// close packing estimate in the bottom of the box (the box's height cut to
+/// what that takes, walls on every side), then the lid lifted to the box's
+/// top and the spheres settled under gravity.
+void place_bed(const PackingSpec& s, double rcp, detail::GenRng& rng, Packing& p) {
+  PackingSpec dense = s;
+  dense.nu = std::min(kBedRcpShare * rcp, 0.999);
+  const double top = p.box[s.d - 1];
+  p.box[s.d - 1] = top * s.nu / dense.nu;
+  place_excluded(dense, rcp, rng, p);
+  p.box[s.d - 1] = top;
+  p.num_attrs["bed_packing_fraction"] = dense.nu;
+  Progress progress(s.progress, "settling under gravity (FIRE)");
+  detail::RelaxStats st;
+  const int threads = static_cast<int>(std::clamp<std::size_t>(s.n / detail::kRelaxMinSpheresPerThread, 1,
+                                                                static_cast<std::size_t>(resolve_threads(s.threads))));
+  if (!detail::settle_under_gravity(s.d, p.box, p.radii, threads, p.positions, progress, st))
+    throw InputError("n", "the bed did not settle within its FIRE step budget (" + std::to_string(st.fire_steps) +
+                              " steps); fewer particles or a smaller size ratio");
+  p.str_attrs["method"] += "+settled";
+  p.num_attrs["settle_fire_steps"] = static_cast<double>(st.fire_steps);
+}
+
 }  // namespace
 
 ExcludedMethod parse_excluded_method(const std::string& s, const std::string& field) {
@@ -179,7 +213,8 @@ EquilibrationStop parse_equilibration_stop(const std::string& s, const std::stri
 Placement parse_placement(const std::string& s, const std::string& field) {
   if (s == "random") return Placement::random;
   if (s == "excluded") return Placement::excluded;
-  throw InputError(field, "must be 'random' or 'excluded' (got '" + s + "')");
+  if (s == "bed") return Placement::bed;
+  throw InputError(field, "must be 'random', 'excluded' or 'bed' (got '" + s + "')");
 }
 
 std::unique_ptr<Distribution> make_distribution(const PackingSpec& s) {
@@ -221,7 +256,7 @@ double check_packing_spec(const PackingSpec& s) {
                "generating a packing");
   const auto dist = make_distribution(s);
   const double rcp = estimate_rcp(s.d, *dist);
-  if (s.placement == Placement::excluded && s.nu > rcp)
+  if (excludes_volume(s.placement) && s.nu > rcp)
     throw InputError("nu", unreachable(s, rcp, "beyond jamming for excluded-volume placement"));
   return rcp;
 }
@@ -264,7 +299,7 @@ double counted_T_over_N(const Packing& p, const std::vector<double>& sizes, int 
 void describe(Packing& p, const PackingSpec& s, const Distribution& dist, double rcp, const detail::Equilibration& e,
               const detail::GenRng& rng, const StopState* stop = nullptr, bool final = false) {
   PackingSpec at = s;
-  if (s.placement == Placement::excluded) p.str_attrs[kRngAttr] = rng.state();
+  if (excludes_volume(s.placement)) p.str_attrs[kRngAttr] = rng.state();
   if (s.equilibrate) {
     // A stage part-way is the chain at e.sweeps; the end of a run that
     // stopped when stationary is the packing its spec (cap) names.
@@ -306,7 +341,7 @@ void describe(Packing& p, const PackingSpec& s, const Distribution& dist, double
   p.num_attrs["rcp_estimate"] = rcp;
   // Overlap figures only for excluded volume (random centres overlap anyway,
   // and a contact search would cost more than the placement itself).
-  const bool excluded = s.placement == Placement::excluded;
+  const bool excluded = excludes_volume(s.placement);
   const PackingQuality q = assess_packing(p, &dist, excluded);
   p.num_attrs["nu_achieved"] = q.nu;
   if (excluded) {
@@ -349,7 +384,8 @@ Packing generate_packing(const PackingSpec& s, const Packing* from, const Packin
     for (int a = 0; a < s.d; ++a) p.box[a] = side;
     p.positions.assign(s.n * s.d, 0.0);
     if (s.placement == Placement::random) place_random(s, rng, p);
-    else place_excluded(s, rcp, rng, p);
+    else if (s.placement == Placement::excluded) place_excluded(s, rcp, rng, p);
+    else place_bed(s, rcp, rng, p);
   }
   std::optional<StopState> stop;  // stop = stationary: the observable's state
   if (s.equilibrate) {

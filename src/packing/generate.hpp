@@ -15,10 +15,19 @@ namespace hgrid {
 
 // ---- the experiments' interface ------------------------------------------
 
-enum class Placement { random, excluded };
+/// Where centres go: independent uniform centres; excluded volume (no
+/// overlaps); or a bed: excluded volume, then every sphere settled under
+/// gravity onto the floor (the last axis) of a box walled on every axis
+/// (packing/detail/gen_relax.hpp, settle_under_gravity), the box's nu
+/// being the particles' volume over the whole box.
+enum class Placement { random, excluded, bed };
 
-inline const char* to_string(Placement p) { return p == Placement::random ? "random" : "excluded"; }
-/// "random" | "excluded"; anything else throws InputError naming `field`.
+inline const char* to_string(Placement p) {
+  return p == Placement::random ? "random" : p == Placement::excluded ? "excluded" : "bed";
+}
+/// Excluded volume: placement excluded or bed.
+inline bool excludes_volume(Placement p) { return p != Placement::random; }
+/// "random" | "excluded" | "bed"; anything else throws InputError naming `field`.
 Placement parse_placement(const std::string& s, const std::string& field = "placement");
 
 /// How excluded-volume placement reaches nu: largest-first random sequential

@@ -58,7 +58,7 @@ std::string packing_mismatch(const Packing& p, const PackingSpec& s) {
   // Event chains move spheres kChainShrink smaller than the packing's.
   const double tol = s.equilibrate && s.moves == EquilibrationMoves::event_chain ? detail::kChainShrink
                                                                                : detail::kFinalOverlapTol;
-  if (s.placement == Placement::excluded && assess_packing(p, nullptr).max_rel_overlap > tol)
+  if (excludes_volume(s.placement) && assess_packing(p, nullptr).max_rel_overlap > tol)
     return "it has overlaps above tolerance";
   return "";
 }

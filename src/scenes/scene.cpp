@@ -113,7 +113,12 @@ void check_lists(const PackingLists& p) {
     if (s != "powerlaw" && s != "lognormal") throw InputError("packings.dist", "must be 'powerlaw' or 'lognormal'");
   for (const auto& s : p.boundary) parse_boundary(s, "packings.boundary");
   bool excluded = false;
-  for (const auto& s : p.placement) excluded |= parse_placement(s, "packings.placement") == Placement::excluded;
+  for (const auto& s : p.placement) {
+    const Placement pl = parse_placement(s, "packings.placement");
+    if (pl == Placement::bed)
+      throw InputError("packings.placement", "must be 'random' or 'excluded' in a scene (a bed is made by `hgrid generate --placement bed` and read as a file)");
+    excluded |= pl == Placement::excluded;
+  }
   if (p.method_given && !excluded) throw InputError("packings.method", "only applies to placement = \"excluded\"");
   if (p.equilibrate && !excluded)
     throw InputError("packings.equilibrate", "only applies to placement = \"excluded\"");

@@ -53,8 +53,7 @@ class Relaxer {
     for (std::size_t i = 0; i < r_.size(); ++i) rs_[i] = lambda_ * r_[i];
     set_margins();
     for (auto& v : v_) v.fill(0.0);
-    double dt = 0.1 * kFireDtMax, alpha = kFireAlpha0;
-    int positive = 0;
+    Fire fire;
     bool rebuild = needs_rebuild();
     for (std::uint64_t step = 0;; ++step) {
       if (rebuild) build_list();
@@ -62,21 +61,37 @@ class Relaxer {
       max_rel = forces(sums);
       if (max_rel < tol) return step;
       if (step == budget) return budget + 1;
-      const double P = sums.P, vv = sums.vv, ff = sums.ff;
-      const bool uphill = !(P > 0);  // FIRE: stop (velocities to zero), else mix velocities towards the forces
-      const double keep = 1 - alpha, mix = !uphill && ff > 0 ? alpha * std::sqrt(vv / ff) : 0.0;
-      if (!uphill) {
-        if (++positive > kFireNmin) {
-          dt = std::min(dt * kFireFinc, kFireDtMax);
-          alpha *= kFireFalpha;
-        }
-      } else {
-        dt *= kFireFdec;
-        alpha = kFireAlpha0;
-        positive = 0;
-      }
-      rebuild = advance(uphill, keep, mix, dt);
+      rebuild = fire_move(fire, sums);
     }
+  }
+
+  /// FIRE at full size with a weight w_i on every sphere along -x_d (walls
+  /// only), until the net forces' root mean square is below kSettleForceTol
+  /// of the weights'. Returns the FIRE steps used, or budget + 1 if it ran out.
+  std::uint64_t settle(const std::vector<double>& weights, std::uint64_t budget) {
+    weight_ = weights.data();
+    lambda_ = 1;
+    for (std::size_t i = 0; i < r_.size(); ++i) rs_[i] = r_[i];
+    set_margins();
+    for (auto& v : v_) v.fill(0.0);
+    Fire fire;
+    bool rebuild = needs_rebuild();
+    std::uint64_t step = 0;
+    for (;; ++step) {
+      if (rebuild) build_list();
+      Sums sums;
+      forces(sums);
+      // The net forces against the weights, both as root mean squares.
+      double f2 = 0, w2 = 0;
+      for (std::size_t i = 0; i < r_.size(); ++i) {
+        for (int k = 0; k < D; ++k) f2 += f_[i][k] * f_[i][k];
+        w2 += weights[i] * weights[i];
+      }
+      if (std::sqrt(f2 / w2) < kSettleForceTol || step == budget) break;
+      rebuild = fire_move(fire, sums);
+    }
+    weight_ = nullptr;
+    return step == budget ? budget + 1 : step;
   }
 
   int builds() const { return builds_; }
@@ -89,6 +104,31 @@ class Relaxer {
   struct Sums {
     double P = 0, vv = 0, ff = 0;
   };
+  /// FIRE's state: time step, mixing, steps since the power was last <= 0.
+  struct Fire {
+    double dt = 0.1 * kFireDtMax, alpha = kFireAlpha0;
+    int positive = 0;
+  };
+
+  /// One FIRE step from the forces' sums: the velocities stopped (uphill)
+  /// or mixed towards the forces, dt and alpha adapted, then the move.
+  /// Returns whether the list must be rebuilt before the next forces.
+  bool fire_move(Fire& s, const Sums& sums) {
+    const double P = sums.P, vv = sums.vv, ff = sums.ff;
+    const bool uphill = !(P > 0);  // FIRE: stop (velocities to zero), else mix velocities towards the forces
+    const double keep = 1 - s.alpha, mix = !uphill && ff > 0 ? s.alpha * std::sqrt(vv / ff) : 0.0;
+    if (!uphill) {
+      if (++s.positive > kFireNmin) {
+        s.dt = std::min(s.dt * kFireFinc, kFireDtMax);
+        s.alpha *= kFireFalpha;
+      }
+    } else {
+      s.dt *= kFireFdec;
+      s.alpha = kFireAlpha0;
+      s.positive = 0;
+    }
+    return advance(uphill, keep, mix, s.dt);
+  }
 
   /// Adds sphere i's terms to the sums (in the one order every thread count uses:
   /// spheres in increasing i, axes in increasing k).
@@ -313,6 +353,7 @@ class Relaxer {
           for (int k = 0; k < D; ++k) f[j][k] += c[k];
       }
       if constexpr (B == Boundary::walls) {
+        if (weight_) fi[D - 1] -= weight_[i];  // settling under gravity (settle_under_gravity)
         for (int k = 0; k < D; ++k) {
           const double lo_gap = ri - xi[k], hi_gap = xi[k] + ri - w.box[k];
           if (lo_gap > 0) {
@@ -353,6 +394,7 @@ class Relaxer {
   std::vector<std::uint32_t> range_, cross_start_, cross_i_;
   double lambda_ = 1, built_lambda_ = 1;
   int builds_ = 0;
+  const double* weight_ = nullptr;  // weights along -x_d while settling
 };
 
 template <int D, Boundary B>
@@ -412,7 +454,51 @@ bool run(const std::array<double, 3>& box3, const std::vector<double>& radii, do
   return ok;
 }
 
+template <int D>
+bool run_settle(const std::array<double, 3>& box3, const std::vector<double>& radii, int threads,
+                std::vector<double>& pos, Progress& progress, RelaxStats& st) {
+  const std::size_t n = radii.size();
+  Extent<D> box;
+  for (int k = 0; k < D; ++k) box[k] = box3[k];
+  std::vector<std::array<double, D>> x(n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = 0; k < D; ++k) x[i][k] = pos[i * D + k];
+  // Weights in proportion to the volumes, scaled so that the floor's
+  // pressure, P = sum w / floor area, would overlap a largest sphere resting
+  // on it by about kSettleOverlap: relative overlap ~ P (2 r_max)^d.
+  const double rmax = *std::max_element(radii.begin(), radii.end());
+  double floor_area = 1, sum = 0;
+  for (int k = 0; k + 1 < D; ++k) floor_area *= box[k];
+  std::vector<double> w(n);
+  for (std::size_t i = 0; i < n; ++i) sum += w[i] = std::pow(radii[i] / rmax, D);
+  const double g = kSettleOverlap / (sum / floor_area * std::pow(2 * rmax, D));
+  for (auto& v : w) v *= g;
+  Relaxer<D, Boundary::walls> relaxer(box, radii, std::move(x), threads);
+  progress.update(0.0, "settling under gravity");
+  const std::uint64_t used = relaxer.settle(w, kSettleSteps);
+  st.fire_steps += std::min(used, kSettleSteps);
+  if (used > kSettleSteps) return false;
+  progress.update(0.5, "settled; relaxing the overlaps without gravity");
+  double worst = 0;
+  const std::uint64_t more = relaxer.relax(1.0, kFinalOverlapTol, kFireStepsPerGrowth, worst);
+  st.fire_steps += std::min(more, kFireStepsPerGrowth);
+  st.max_rel_overlap = worst;
+  st.list_builds = relaxer.builds();
+  if (more > kFireStepsPerGrowth) return false;
+  const auto& y = relaxer.positions();
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = 0; k < D; ++k) pos[i * D + k] = y[i][k];
+  progress.update(1.0, "settled");
+  return true;
+}
+
 }  // namespace
+
+bool settle_under_gravity(int d, const std::array<double, 3>& box, const std::vector<double>& radii, int threads,
+                          std::vector<double>& pos, Progress& progress, RelaxStats& stats) {
+  return d == 2 ? run_settle<2>(box, radii, threads, pos, progress, stats)
+                : run_settle<3>(box, radii, threads, pos, progress, stats);
+}
 
 bool grow_and_relax(int d, Boundary b, const std::array<double, 3>& box, const std::vector<double>& radii,
                     double scale0, int threads, std::vector<double>& pos, Progress& progress, RelaxStats& stats) {

@@ -40,6 +40,15 @@ inline constexpr std::uint64_t kFireStepsTotal = 400000;
 inline constexpr double kFireMassFloor = 0.1;
 /// Verlet skin of the neighbour list, relative to each radius.
 inline constexpr double kSkin = 0.25;
+/// Settling (settle_under_gravity): the weights' scale, as the relative
+/// overlap the floor's pressure would give a largest sphere resting on it;
+/// the net forces' root mean square, relative to the weights', below which
+/// the bed has settled (a per-sphere test never ends: the smallest spheres'
+/// weights are 1/omega^d of the largest's, below the forces' noise); the
+/// FIRE step budget.
+inline constexpr double kSettleOverlap = 2e-3;
+inline constexpr double kSettleForceTol = 0.05;
+inline constexpr std::uint64_t kSettleSteps = 400000;
 /// Spheres per thread below which generate_packing relaxes on fewer threads
 /// (a FIRE step on a few thousand spheres is too short to share).
 inline constexpr std::size_t kRelaxMinSpheresPerThread = 8192;
@@ -58,6 +67,15 @@ struct RelaxStats {
 /// walls, spheres also feel a harmonic wall. Returns false (stats say how
 /// far it got) when a step budget runs out. Lists, forces and moves run on
 /// `threads` threads; the result does not depend on their number.
+/// A bed: spheres at non-overlapping centres pos (n x d) in a box walled on
+/// every axis, each with a weight in proportion to its volume along -x_d,
+/// relaxed with FIRE (as grow_and_relax, at full size) until the net
+/// forces' root mean square is below kSettleForceTol of the weights'; then
+/// the weights removed and the overlaps relaxed below kFinalOverlapTol.
+/// Returns false when a step budget runs out.
+bool settle_under_gravity(int d, const std::array<double, 3>& box, const std::vector<double>& radii, int threads,
+                          std::vector<double>& pos, Progress& progress, RelaxStats& stats);
+
 bool grow_and_relax(int d, Boundary b, const std::array<double, 3>& box, const std::vector<double>& radii,
                     double scale0, int threads, std::vector<double>& pos, Progress& progress, RelaxStats& stats);
 
