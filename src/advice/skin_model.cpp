@@ -102,9 +102,9 @@ SkinPrediction predict_skin(const SkinMeasurement& a, const SkinMeasurement& b, 
   if (near.steps_per_build < kCensoredSteps && near.travel_per_step > 0) {
     const double b = near.travel_growth > 0 ? std::clamp(std::log2(near.travel_growth), kRandomWalkExponent, 1.0) : 1.0;
     p.steps_per_build = std::max(1.0, std::pow(skin / near.travel_per_step, 1 / b));
-  }
-  else
+  } else {
     p.steps_per_build = std::max(1.0, near.steps_per_build * skin / near.skin);
+  }
   const double grid = 0.5 * (lo.seconds_grid + hi.seconds_grid), check = 0.5 * (lo.seconds_check + hi.seconds_check);
   p.seconds_per_step =
       (grid + at(lo.seconds_store, hi.seconds_store)) / p.steps_per_build + at(lo.seconds_test, hi.seconds_test) + check;

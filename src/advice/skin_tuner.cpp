@@ -24,7 +24,8 @@ SkinMeasurement skin_measurement(double skin, const ContactListStats& now, const
   m.steps_per_build = steps / builds;
   if (now.travel_steps > before.travel_steps)
     m.travel_per_step = (now.travel - before.travel) / static_cast<double>(now.travel_steps - before.travel_steps);
-  if (now.travel_one > before.travel_one) m.travel_growth = (now.travel_two - before.travel_two) / (now.travel_one - before.travel_one);
+  if (now.travel_one > before.travel_one)
+    m.travel_growth = (now.travel_two - before.travel_two) / (now.travel_one - before.travel_one);
   m.contacts_per_n = static_cast<double>(now.contacts) / n;
   m.candidates_per_n = static_cast<double>(now.candidates_tested - before.candidates_tested) / steps / n;
   m.seconds_grid = grid / builds;
