@@ -109,6 +109,12 @@ std::string unreachable(const PackingSpec& s, double rcp, const std::string& why
          "distribution is " + brief(std::round(rcp * 1e4) / 1e4) + " (requested " + brief(s.nu) + ")";
 }
 
+/// FIRE's threads (growth, settling): at most one per kRelaxMinSpheresPerThread spheres.
+int relax_threads(const PackingSpec& s) {
+  return static_cast<int>(std::clamp<std::size_t>(s.n / detail::kRelaxMinSpheresPerThread, 1,
+                                                  static_cast<std::size_t>(resolve_threads(s.threads))));
+}
+
 void place_excluded(const PackingSpec& s, double rcp, detail::GenRng& rng, Packing& p) {
   const double side = p.box[0];
   const double rmax = *std::max_element(p.radii.begin(), p.radii.end());
@@ -150,9 +156,7 @@ void place_excluded(const PackingSpec& s, double rcp, detail::GenRng& rng, Packi
   }
   Progress progress2(s.progress, "growth + FIRE relaxation");
   detail::RelaxStats st;
-  const int relax_threads = static_cast<int>(std::clamp<std::size_t>(s.n / detail::kRelaxMinSpheresPerThread, 1,
-                                                                      static_cast<std::size_t>(resolve_threads(s.threads))));
-  if (!detail::grow_and_relax(s.d, s.boundary, p.box, p.radii, scale0, relax_threads, p.positions, progress2, st)) {
+  if (!detail::grow_and_relax(s.d, s.boundary, p.box, p.radii, scale0, relax_threads(s), p.positions, progress2, st)) {
     const double reached = s.nu * std::pow(std::pow(detail::kGrowthStep, st.growth_steps) * scale0, s.d);
     throw InputError("nu", unreachable(s, rcp, "the growth did not converge within its FIRE step budget (reached nu ≈ " +
                                                    brief(std::round(std::min(reached, s.nu) * 1e4) / 1e4) + " after " +
@@ -180,9 +184,7 @@ void place_bed(const PackingSpec& s, double rcp, detail::GenRng& rng, Packing& p
   p.num_attrs["bed_packing_fraction"] = dense.nu;
   Progress progress(s.progress, "settling under gravity (FIRE)");
   detail::RelaxStats st;
-  const int threads = static_cast<int>(std::clamp<std::size_t>(s.n / detail::kRelaxMinSpheresPerThread, 1,
-                                                                static_cast<std::size_t>(resolve_threads(s.threads))));
-  if (!detail::settle_under_gravity(s.d, p.box, p.radii, threads, p.positions, progress, st))
+  if (!detail::settle_under_gravity(s.d, p.box, p.radii, relax_threads(s), p.positions, progress, st))
     throw InputError("n", "the bed did not settle within its FIRE step budget (" + std::to_string(st.fire_steps) +
                               " steps); fewer particles or a smaller size ratio");
   p.str_attrs["method"] += "+settled";

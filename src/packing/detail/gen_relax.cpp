@@ -49,20 +49,10 @@ class Relaxer {
   /// Relaxes at scale lambda until the largest relative overlap is below tol.
   /// Returns the FIRE steps used, or budget + 1 if it ran out.
   std::uint64_t relax(double lambda, double tol, std::uint64_t budget, double& max_rel) {
-    lambda_ = lambda;
-    for (std::size_t i = 0; i < r_.size(); ++i) rs_[i] = lambda_ * r_[i];
-    set_margins();
-    for (auto& v : v_) v.fill(0.0);
-    Fire fire;
-    bool rebuild = needs_rebuild();
-    for (std::uint64_t step = 0;; ++step) {
-      if (rebuild) build_list();
-      Sums sums;
-      max_rel = forces(sums);
-      if (max_rel < tol) return step;
-      if (step == budget) return budget + 1;
-      rebuild = fire_move(fire, sums);
-    }
+    return fire_until(lambda, budget, [&](double worst) {
+      max_rel = worst;
+      return worst < tol;
+    });
   }
 
   /// FIRE at full size with a weight w_i on every sphere along -x_d (walls
@@ -70,28 +60,16 @@ class Relaxer {
   /// of the weights'. Returns the FIRE steps used, or budget + 1 if it ran out.
   std::uint64_t settle(const std::vector<double>& weights, std::uint64_t budget) {
     weight_ = weights.data();
-    lambda_ = 1;
-    for (std::size_t i = 0; i < r_.size(); ++i) rs_[i] = r_[i];
-    set_margins();
-    for (auto& v : v_) v.fill(0.0);
-    Fire fire;
-    bool rebuild = needs_rebuild();
-    std::uint64_t step = 0;
-    for (;; ++step) {
-      if (rebuild) build_list();
-      Sums sums;
-      forces(sums);
-      // The net forces against the weights, both as root mean squares.
-      double f2 = 0, w2 = 0;
-      for (std::size_t i = 0; i < r_.size(); ++i) {
-        for (int k = 0; k < D; ++k) f2 += f_[i][k] * f_[i][k];
-        w2 += weights[i] * weights[i];
-      }
-      if (std::sqrt(f2 / w2) < kSettleForceTol || step == budget) break;
-      rebuild = fire_move(fire, sums);
-    }
+    double w2 = 0;
+    for (const double w : weights) w2 += w * w;
+    const std::uint64_t used = fire_until(1.0, budget, [&](double) {
+      double f2 = 0;
+      for (const Vec& f : f_)
+        for (int k = 0; k < D; ++k) f2 += f[k] * f[k];
+      return std::sqrt(f2 / w2) < kSettleForceTol;
+    });
     weight_ = nullptr;
-    return step == budget ? budget + 1 : step;
+    return used;
   }
 
   int builds() const { return builds_; }
@@ -109,6 +87,26 @@ class Relaxer {
     double dt = 0.1 * kFireDtMax, alpha = kFireAlpha0;
     int positive = 0;
   };
+
+  /// FIRE at scale lambda from rest until done(the largest relative
+  /// overlap) says so after a step's forces. Returns the FIRE steps used,
+  /// or budget + 1 if it ran out.
+  template <class Done>
+  std::uint64_t fire_until(double lambda, std::uint64_t budget, Done&& done) {
+    lambda_ = lambda;
+    for (std::size_t i = 0; i < r_.size(); ++i) rs_[i] = lambda_ * r_[i];
+    set_margins();
+    for (auto& v : v_) v.fill(0.0);
+    Fire fire;
+    bool rebuild = needs_rebuild();
+    for (std::uint64_t step = 0;; ++step) {
+      if (rebuild) build_list();
+      Sums sums;
+      if (done(forces(sums))) return step;
+      if (step == budget) return budget + 1;
+      rebuild = fire_move(fire, sums);
+    }
+  }
 
   /// One FIRE step from the forces' sums: the velocities stopped (uphill)
   /// or mixed towards the forces, dt and alpha adapted, then the move.

@@ -67,6 +67,9 @@ struct RelaxStats {
 /// walls, spheres also feel a harmonic wall. Returns false (stats say how
 /// far it got) when a step budget runs out. Lists, forces and moves run on
 /// `threads` threads; the result does not depend on their number.
+bool grow_and_relax(int d, Boundary b, const std::array<double, 3>& box, const std::vector<double>& radii,
+                    double scale0, int threads, std::vector<double>& pos, Progress& progress, RelaxStats& stats);
+
 /// A bed: spheres at non-overlapping centres pos (n x d) in a box walled on
 /// every axis, each with a weight in proportion to its volume along -x_d,
 /// relaxed with FIRE (as grow_and_relax, at full size) until the net
@@ -75,8 +78,5 @@ struct RelaxStats {
 /// Returns false when a step budget runs out.
 bool settle_under_gravity(int d, const std::array<double, 3>& box, const std::vector<double>& radii, int threads,
                           std::vector<double>& pos, Progress& progress, RelaxStats& stats);
-
-bool grow_and_relax(int d, Boundary b, const std::array<double, 3>& box, const std::vector<double>& radii,
-                    double scale0, int threads, std::vector<double>& pos, Progress& progress, RelaxStats& stats);
 
 }  // namespace hgrid::detail
