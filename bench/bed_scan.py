@@ -6,13 +6,14 @@ For every bed and frame: the counted T/N of the sizes `hgrid recommend`
 gives (the density field's), of the homogeneous model's sizes at the box's
 nu, and of the scan (the model's sizes for nu = 0.1 ... 0.7 and the linked
 cell); the predictions of both against what their sizes measure. Counts are
-machine-independent. With --seconds R, also the fastest of R uncounted build
-+ query runs per set of sizes, alternated over rounds (this machine's time),
+machine-independent. With --seconds R, also the fastest uncounted build +
+query run per set of sizes (at least R runs and 0.1 s of them in each process,
+over --rounds alternated rounds of processes; this machine's time),
 and the sizes `hgrid recommend --cost time` gives with the stored
 calibration (`hgrid calibrate`).
 
 Usage: PYTHONPATH=build/python bench/bed_scan.py [--hgrid build/hgrid]
-       [--seconds R] [FILE:FRAME ...]   (default: tests/data/beds, frames 0 and 1)
+       [--seconds R [--rounds K]] [FILE:FRAME ...]   (default: tests/data/beds, frames 0 and 1)
 """
 import argparse
 import json
@@ -28,6 +29,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 BEDS = os.path.join(HERE, "..", "tests", "data", "beds")
 SCAN_NU = (0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7)
 K = 0.2
+kMinSeconds = 0.1  # --seconds: the least time of the runs in one process
+kMaxRepeats = 5000
 
 
 def seconds(hgrid, path, frame, sizes, repeat):
@@ -39,7 +42,7 @@ def seconds(hgrid, path, frame, sizes, repeat):
     return j["seconds_build_best"] + j["seconds_query_best"]
 
 
-def bed(hgrid, path, frame, repeat):
+def bed(hgrid, path, frame, repeat, rounds=3):
     p = hgridlab.read_packing(path, frame=frame)
     d = p["d"]
     pos, rad, box = p["positions"], p["radii"], p["box"][:d]
@@ -77,13 +80,19 @@ def bed(hgrid, path, frame, repeat):
         timed = subprocess.run([hgrid, "recommend", path, "--frame", str(frame), "--cost", "time", "--json"],
                                check=True, capture_output=True, text=True).stdout
         sizes = dict(candidates, field=field["sizes"], time=json.loads(timed)["sizes"])
+        # At least `repeat` runs and about kMinSeconds of them per process: a bed
+        # of a few thousand particles searches in 0.1-0.3 ms, and its first
+        # runs in a process (caches, clock) took twice as long as the later ones.
+        runs = {k: max(repeat, min(kMaxRepeats, int(kMinSeconds / seconds(hgrid, path, frame, s, 3)) + 1))
+                for k, s in sizes.items()}
         fastest = {k: float("inf") for k in sizes}
-        for _ in range(3):  # alternated rounds; the fastest of all
+        for _ in range(rounds):  # alternated rounds (a process each); the fastest of all
             for k, s in sizes.items():
-                fastest[k] = min(fastest[k], seconds(hgrid, path, frame, s, repeat))
+                fastest[k] = min(fastest[k], seconds(hgrid, path, frame, s, runs[k]))
         scan_best = min(v for k, v in fastest.items() if k not in ("field", "time"))
         row["seconds"] = dict(best_of_scan=scan_best, field_over_best=fastest["field"] / scan_best,
-                              time_over_best=fastest["time"] / scan_best)
+                              time_over_best=fastest["time"] / scan_best, each=fastest,
+                              time_sizes=sizes["time"])
     return row
 
 
@@ -92,6 +101,8 @@ def main():
     ap.add_argument("beds", nargs="*")
     ap.add_argument("--hgrid", default=os.path.join(HERE, "..", "build", "hgrid"))
     ap.add_argument("--seconds", type=int, default=0, metavar="R")
+    ap.add_argument("--rounds", type=int, default=3, metavar="K",
+                    help="with --seconds: K alternated rounds of every set of sizes, a process each")
     ap.add_argument("--json", action="store_true")
     a = ap.parse_args()
     beds = a.beds or ["%s:%d" % (os.path.join(BEDS, f), fr) for f in sorted(os.listdir(BEDS))
@@ -99,7 +110,7 @@ def main():
     rows = []
     for item in beds:
         path, frame = item.rsplit(":", 1)
-        r = bed(a.hgrid, path, int(frame), a.seconds)
+        r = bed(a.hgrid, path, int(frame), a.seconds, a.rounds)
         rows.append(r)
         if a.json:
             continue

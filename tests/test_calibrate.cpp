@@ -221,14 +221,18 @@ TEST(Calibrate, SceneListCoversTheRequestedRange) {
   for (bool quick : {false, true}) {
     const auto scenes = calibration_scenes(quick);
     EXPECT_GE(scenes.size(), 12u);
-    bool d2 = false, d3 = false, excl = false, single = false, a0 = false, a3 = false;
+    bool d2 = false, d3 = false, excl = false, single = false, a0 = false, a3 = false, bed = false;
     for (const auto& s : scenes) {
       d2 |= s.packing.d == 2, d3 |= s.packing.d == 3, excl |= s.packing.placement == Placement::excluded;
       single |= s.cells == "single", a0 |= s.packing.alpha == 0, a3 |= s.packing.alpha == -3;
+      // A settled bed's regime (docs/MODEL.md section 9): a linked cell over
+      // dense 3D hard spheres of uniform diameters and a moderate size ratio.
+      bed |= s.packing.d == 3 && s.packing.placement == Placement::excluded && s.packing.nu >= 0.5 &&
+             s.packing.alpha == 0 && s.packing.omega <= 5 && s.cells == "single";
       EXPECT_GE(s.packing.n, 10000u);  // down to the DPM test's N = 10^4 (quick)
       EXPECT_LE(s.packing.n, 200000u);
     }
-    EXPECT_TRUE(d2 && d3 && excl && single && a0 && a3);
+    EXPECT_TRUE(d2 && d3 && excl && single && a0 && a3 && bed);
   }
 }
 
