@@ -373,8 +373,11 @@ class HGrid {
   }
   /// Overlap tests of sp (handed out as p) against the run [qb, qe) of
   /// sorted particles, four at a time (detail/overlap4.hpp: each lane the
-  /// scalar test's arithmetic), the rest one at a time: the same pairs in
-  /// the same order as test() over the run. For long runs (a dense cell).
+  /// scalar test's arithmetic), the last one to three as four whose lanes
+  /// beyond the run are masked off (one at a time only at the array's end);
+  /// each four's pairs appended to the buffer without a branch on the
+  /// outcome (detail::append4). The same pairs in the same order as test()
+  /// over the run. For long runs (a dense cell).
   template <class Count, Boundary TB = B, class E>
   void test_range(const Sphere<D>& sp, std::uint32_t p, std::uint32_t qb, std::uint32_t qe, E& e,
                   Counters& out) const {
@@ -382,16 +385,23 @@ class HGrid {
     std::uint32_t q = qb;
     if constexpr (detail::kOverlap4) {
       const Sphere<D>* const s = sorted_.data();
-      for (; q + 4 <= qe; q += 4) {
-        unsigned bits = detail::overlap4<D, TB>(sp, s + q, box_);
-        if (bits == 0) continue;
-        if constexpr (Count::enabled) out.contacts += static_cast<std::uint64_t>(std::popcount(bits));
-        do {
-          e.buf[e.n++] = {p, q + static_cast<std::uint32_t>(std::countr_zero(bits))};
-          if (e.n == e.buf.size()) e.flush();
-          bits &= bits - 1;
-        } while (bits != 0);
+      std::uint32_t n = e.n;  // in a register over the run
+      const auto add = [&](unsigned bits) {
+        if (n + 4 >= e.buf.size()) {  // room for four, and never full on return
+          e.n = n;
+          e.flush();
+          n = 0;
+        }
+        const unsigned hits = detail::append4(e.buf.data() + n, p, q, bits);
+        n += hits;
+        if constexpr (Count::enabled) out.contacts += hits;
+      };
+      for (; q + 4 <= qe; q += 4) add(detail::overlap4<D, TB>(sp, s + q, box_));
+      if (q < qe && q + 4 <= sorted_.size()) {
+        add(detail::overlap4<D, TB>(sp, s + q, box_) & ((1u << (qe - q)) - 1));
+        q = qe;
       }
+      e.n = n;
     }
     for (; q < qe; ++q) test<Count, TB>(sp, p, q, e, out);
   }
