@@ -4,9 +4,13 @@
 // many small neighbours about as stiff as a small one, but the spheres'
 // stiffness sums still span a factor ~50; each sphere's mass is its sum
 // (kFireMassFloor), so one time step suits all. Contacts come from a Verlet
-// list (skin kSkin r_i) built with the HGrid and rebuilt only when a sphere
-// has moved or grown through its skin; its partner lists are sorted, so the
-// packing does not depend on the grid.
+// list (skin kSkin r_i), rebuilt only when a sphere has moved or grown
+// through its own skin; the list is built by the contact list
+// (contacts/contact_list.hpp, the spheres inflated by kSkin r_i, as exact
+// pairs), so its rows are in canonical order and the packing does not
+// depend on the grid. The rule stays this file's, one margin per sphere
+// (the contact list's two-smallest-margins rule would rebuild less often,
+// and the masses, set at each build, and so every packing would change).
 //
 // Threads: the spheres (in spatial order) are cut into one range per thread,
 // balanced by list pairs. A sphere's force is the sum, in canonical order, of
@@ -25,7 +29,7 @@
 #include <cstdio>
 #include <numeric>
 
-#include "hgridlab/packing/detail/gen_pairs.hpp"
+#include "hgridlab/contacts/contact_list.hpp"
 
 namespace hgrid::detail {
 namespace {
@@ -44,7 +48,7 @@ class Relaxer {
 
   Relaxer(const Extent<D>& box, std::vector<double> radii, std::vector<Vec> x, int threads)
       : box_(box), r_(std::move(radii)), rs_(r_.size()), skin2_(r_.size()), x_(std::move(x)), v_(r_.size()),
-        f_(r_.size()), xref_(r_.size()), threads_(std::max(1, threads)) {}
+        f_(r_.size()), xref_(r_.size()), threads_(std::max(1, threads)), list_(list_box(box), list_params(threads_)) {}
 
   /// Relaxes at scale lambda until the largest relative overlap is below tol.
   /// Returns the FIRE steps used, or budget + 1 if it ran out.
@@ -204,20 +208,38 @@ class Relaxer {
     return any;
   }
 
+  /// The contact list's box: this one's sides, every axis periodic or walled.
+  static ListBox<D> list_box(const Extent<D>& box) {
+    ListBox<D> b;
+    b.side = box;
+    b.periodic.fill(B == Boundary::periodic);
+    return b;
+  }
+  /// No skin: at every update the list's pairs are those of the spheres it
+  /// is given (here inflated by kSkin), from a grid rebuilt in place.
+  static ContactListParams list_params(int threads) {
+    ContactListParams p;
+    p.threads = threads;
+    return p;
+  }
+
   void build_list() {
     ++builds_;
     built_lambda_ = lambda_;
     set_margins();
     const std::size_t n = r_.size();
-    std::vector<Sphere<D>> s(n);
+    inflated_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-      s[i].x = x_[i];
+      Sphere<D>& s = inflated_[i];
+      s.x = x_[i];
       if constexpr (B == Boundary::walls)
-        for (int k = 0; k < D; ++k) s[i].x[k] = std::clamp(s[i].x[k], 0.0, box_[k]);
-      s[i].r = rs_[i] * (1 + kSkin);  // lambda_ r_[i] (1 + kSkin), as rs_ holds lambda_ r_[i]
+        for (int k = 0; k < D; ++k) s.x[k] = std::clamp(s.x[k], 0.0, box_[k]);
+      s.r = rs_[i] * (1 + kSkin);  // lambda_ r_[i] (1 + kSkin), as rs_ holds lambda_ r_[i]
       xref_[i] = x_[i];
     }
-    neighbour_lists<D, B>(std::span<const Sphere<D>>(s), box_, start_, nbr_, threads_);  // sorted: see there
+    list_.update(std::span<const Sphere<D>>(inflated_));  // canonical rows: see there
+    start_.assign(list_.start().begin(), list_.start().end());
+    nbr_.assign(list_.partners().begin(), list_.partners().end());
     // Each sphere's stiffness: the sum of its list pairs' 1/sigma^2 (an upper
     // bound on its touching pairs') and its walls'.
     std::vector<double> k(n, 0.0);
@@ -389,6 +411,8 @@ class Relaxer {
   std::vector<Vec> x_, v_, f_, xref_;
   std::vector<std::uint32_t> start_, nbr_;
   int threads_ = 1;
+  ContactList<D> list_;              // builds the Verlet list (start_, nbr_)
+  std::vector<Sphere<D>> inflated_;  // the spheres it is built from
   std::vector<std::uint32_t> range_, cross_start_, cross_i_;
   double lambda_ = 1, built_lambda_ = 1;
   int builds_ = 0;
