@@ -560,9 +560,10 @@ class ContactList {
     const detail::PairKeys& ps = *keys_of_;
     const std::span<const Sphere<D>> gspan(gs_.data(), gs_.size());
     const auto collect = [&](const auto& grid) {  // the grid's pairs as keys, one list per thread
-      if (T <= 1)
-        grid.template for_each_pair<PairsOnly>([&](std::uint32_t i, std::uint32_t j) { keys_[0].push_back(ps.key(i, j)); });
-      else
+      if (T <= 1) {
+        std::vector<std::uint64_t>& out = keys_[0];  // held, not looked up, for each pair
+        grid.template for_each_pair<PairsOnly>([&out, ps](std::uint32_t i, std::uint32_t j) { out.push_back(ps.key(i, j)); });
+      } else
         grid.template for_each_pair<PairsOnly>(
             [&](int t, std::uint32_t i, std::uint32_t j) { keys_[static_cast<std::size_t>(t)].push_back(ps.key(i, j)); });
     };

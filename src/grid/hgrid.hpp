@@ -339,6 +339,23 @@ class HGrid {
     const std::uint32_t* id;
     std::array<std::pair<std::uint32_t, std::uint32_t>, 64> buf;
     std::uint32_t n = 0;
+    /// The runs' groups of four tested lately, and how many of them held a
+    /// pair: where at least one in kDenseHits does, a run appends each
+    /// group's pairs without a branch on the outcome (a branch taken that
+    /// often mispredicts); else it skips the groups without a pair (most,
+    /// and the branch predicts well). Either way the same pairs in the same
+    /// order; halved now and then, so they follow the query's regions.
+    std::uint32_t groups = 0, hit_groups = 0;
+    static constexpr std::uint32_t kDenseHits = 8;
+    bool dense() const { return hit_groups * kDenseHits > groups; }
+    void tested(std::uint32_t g, std::uint32_t h) {
+      groups += g;
+      hit_groups += h;
+      if (groups > (1u << 14)) {
+        groups >>= 1;
+        hit_groups >>= 1;
+      }
+    }
     void flush() {
       for (std::uint32_t k = 0; k < n; ++k) {
         if constexpr (Probe) {
@@ -371,13 +388,27 @@ class HGrid {
       if (e.n == e.buf.size()) e.flush();
     }
   }
+  /// Appends to e's buffer the pairs (p, q + t) of the set bits t of one
+  /// group of four (detail::append4); n: the buffer's fill, held by the
+  /// caller. Dense: no branch on the outcome (Emit::dense).
+  template <bool Dense, class E>
+  static void add_group(E& e, std::uint32_t& n, std::uint32_t& hit_groups, std::uint32_t p, std::uint32_t q,
+                        unsigned bits) {
+    if (!Dense && bits == 0) return;
+    if (n + 4 >= e.buf.size()) {  // room for four, and never full on return
+      e.n = n;
+      e.flush();
+      n = 0;
+    }
+    n += detail::append4(e.buf.data() + n, p, q, bits);
+    hit_groups += Dense ? bits != 0 : 1;
+  }
   /// Overlap tests of sp (handed out as p) against the run [qb, qe) of
   /// sorted particles, four at a time (detail/overlap4.hpp: each lane the
   /// scalar test's arithmetic), the last one to three as four whose lanes
   /// beyond the run are masked off (one at a time only at the array's end);
-  /// each four's pairs appended to the buffer without a branch on the
-  /// outcome (detail::append4). The same pairs in the same order as test()
-  /// over the run. For long runs (a dense cell).
+  /// each four's pairs appended to the buffer (add_group). The same pairs in
+  /// the same order as test() over the run. For long runs (a dense cell).
   template <class Count, Boundary TB = B, class E>
   void test_range(const Sphere<D>& sp, std::uint32_t p, std::uint32_t qb, std::uint32_t qe, E& e,
                   Counters& out) const {
@@ -385,23 +416,25 @@ class HGrid {
     std::uint32_t q = qb;
     if constexpr (detail::kOverlap4) {
       const Sphere<D>* const s = sorted_.data();
-      std::uint32_t n = e.n;  // in a register over the run
-      const auto add = [&](unsigned bits) {
-        if (n + 4 >= e.buf.size()) {  // room for four, and never full on return
-          e.n = n;
-          e.flush();
-          n = 0;
+      const auto run = [&]<bool Dense>() {
+        std::uint32_t n = e.n, hits = 0;  // in registers over the run
+        const std::uint32_t q0 = q;
+        for (; q + 4 <= qe; q += 4) {
+          const unsigned bits = detail::overlap4<D, TB>(sp, s + q, box_);
+          if constexpr (Count::enabled) out.contacts += static_cast<std::uint64_t>(std::popcount(bits));
+          add_group<Dense>(e, n, hits, p, q, bits);
         }
-        const unsigned hits = detail::append4(e.buf.data() + n, p, q, bits);
-        n += hits;
-        if constexpr (Count::enabled) out.contacts += hits;
+        if (q < qe && q + 4 <= sorted_.size()) {
+          const unsigned bits = detail::overlap4<D, TB>(sp, s + q, box_) & ((1u << (qe - q)) - 1);
+          if constexpr (Count::enabled) out.contacts += static_cast<std::uint64_t>(std::popcount(bits));
+          add_group<Dense>(e, n, hits, p, q, bits);
+          q = qe;
+        }
+        e.n = n;
+        e.tested((q - q0 + 3) / 4, hits);
       };
-      for (; q + 4 <= qe; q += 4) add(detail::overlap4<D, TB>(sp, s + q, box_));
-      if (q < qe && q + 4 <= sorted_.size()) {
-        add(detail::overlap4<D, TB>(sp, s + q, box_) & ((1u << (qe - q)) - 1));
-        q = qe;
-      }
-      e.n = n;
+      if (e.dense()) run.template operator()<true>();
+      else run.template operator()<false>();
     }
     for (; q < qe; ++q) test<Count, TB>(sp, p, q, e, out);
   }
@@ -461,6 +494,15 @@ class HGrid {
   /// level h in words (ranked) or slots (hashed) [u0, u1).
   template <Search S, class Count, class F>
   void cells_phase(int h, std::uint64_t u0, std::uint64_t u1, F& f, Counters& out) const;
+  /// Uncounted same-level tests (and Bottom-Up's cross-level searches) of
+  /// the cell [beg, end) of level h, its half stencil's candidates gathered
+  /// into one run (cells_phase). Cells of at least kGatherMinParticles
+  /// particles and at most kGatherMax in all, a copy on the stack.
+  template <Search S, class Count, class F>
+  void gather_and_test(int h, std::uint32_t beg, std::uint32_t end, const std::uint32_t* cand, std::uint32_t n_cand,
+                       const std::pair<std::uint32_t, std::uint32_t>* nb, int n_nb, bool plain, F& f,
+                       Counters& out) const;
+  static constexpr std::uint32_t kGatherMinParticles = 2, kGatherMax = 508;
   /// Top-Down cross-level phase: the particles sweep_[i0, i1) search the
   /// levels below their own, in the order of sweep_.
   template <class Count, class F>

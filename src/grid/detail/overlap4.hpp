@@ -65,33 +65,45 @@ inline unsigned overlap4(const Sphere<D>& p, const Sphere<D>* s, const Extent<D>
   return static_cast<unsigned>(_mm256_movemask_pd(_mm256_cmp_pd(s2, _mm256_mul_pd(rs, rs), _CMP_LT_OQ)));
 }
 
+/// For each 4-bit mask, the 32-bit lanes of four pairs (p, q_0) ... (p, q_3)
+/// that make its pairs, packed to the front.
+inline constexpr auto kAppendLanes = [] {
+  std::array<std::array<std::int32_t, 8>, 16> t{};
+  for (unsigned m = 0; m < 16; ++m) {
+    unsigned k = 0;
+    for (unsigned b = 0; b < 4; ++b)
+      if (m >> b & 1u) {
+        t[m][2 * k] = static_cast<std::int32_t>(2 * b);
+        t[m][2 * k + 1] = static_cast<std::int32_t>(2 * b + 1);
+        ++k;
+      }
+    for (; k < 4; ++k) t[m][2 * k + 1] = 1;
+  }
+  return t;
+}();
+
 /// Writes the pairs (p, q + t), t the set bits of a 4-bit mask, lowest
 /// first, to out[0..popcount): one 32-byte store of four pairs (those past
 /// the count are scratch, so out must have room for four), no branch on
 /// the mask. Returns the count.
 inline unsigned append4(std::pair<std::uint32_t, std::uint32_t>* out, std::uint32_t p, std::uint32_t q,
                         unsigned bits) {
-  // For each mask, the 32-bit lanes of (p, q, p, q + 1, p, q + 2, p, q + 3)
-  // that make its pairs, packed to the front.
-  static constexpr auto kLanes = [] {
-    std::array<std::array<std::int32_t, 8>, 16> t{};
-    for (unsigned m = 0; m < 16; ++m) {
-      unsigned k = 0;
-      for (unsigned b = 0; b < 4; ++b)
-        if (m >> b & 1u) {
-          t[m][2 * k] = static_cast<std::int32_t>(2 * b);
-          t[m][2 * k + 1] = static_cast<std::int32_t>(2 * b + 1);
-          ++k;
-        }
-      for (; k < 4; ++k) t[m][2 * k + 1] = 1;
-    }
-    return t;
-  }();
   static_assert(sizeof(std::pair<std::uint32_t, std::uint32_t>) == 8);
   const auto pi = static_cast<std::int32_t>(p), qi = static_cast<std::int32_t>(q);
   const __m256i pairs = _mm256_add_epi32(_mm256_setr_epi32(pi, qi, pi, qi, pi, qi, pi, qi),
                                          _mm256_setr_epi32(0, 0, 0, 1, 0, 2, 0, 3));
-  const __m256i lanes = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(kLanes[bits].data()));
+  const __m256i lanes = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(kAppendLanes[bits].data()));
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), _mm256_permutevar8x32_epi32(pairs, lanes));
+  return static_cast<unsigned>(std::popcount(bits));
+}
+
+/// Same, the pairs (p, idx[t]): for spheres gathered from several runs.
+inline unsigned append4_indexed(std::pair<std::uint32_t, std::uint32_t>* out, std::uint32_t p,
+                                const std::uint32_t* idx, unsigned bits) {
+  const __m128i pv = _mm_set1_epi32(static_cast<std::int32_t>(p));
+  const __m128i iv = _mm_loadu_si128(reinterpret_cast<const __m128i*>(idx));
+  const __m256i pairs = _mm256_set_m128i(_mm_unpackhi_epi32(pv, iv), _mm_unpacklo_epi32(pv, iv));
+  const __m256i lanes = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(kAppendLanes[bits].data()));
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), _mm256_permutevar8x32_epi32(pairs, lanes));
   return static_cast<unsigned>(std::popcount(bits));
 }
@@ -109,6 +121,13 @@ inline unsigned append4(std::pair<std::uint32_t, std::uint32_t>* out, std::uint3
                         unsigned bits) {
   unsigned n = 0;
   for (; bits != 0; bits &= bits - 1) out[n++] = {p, q + static_cast<std::uint32_t>(std::countr_zero(bits))};
+  return n;
+}
+
+inline unsigned append4_indexed(std::pair<std::uint32_t, std::uint32_t>* out, std::uint32_t p,
+                                const std::uint32_t* idx, unsigned bits) {
+  unsigned n = 0;
+  for (; bits != 0; bits &= bits - 1) out[n++] = {p, idx[std::countr_zero(bits)]};
   return n;
 }
 #endif
