@@ -28,6 +28,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numeric>
+#include <span>
 
 #include "hgridlab/contacts/contact_list.hpp"
 
@@ -238,8 +239,8 @@ class Relaxer {
       xref_[i] = x_[i];
     }
     list_.update(std::span<const Sphere<D>>(inflated_));  // canonical rows: see there
-    start_.assign(list_.start().begin(), list_.start().end());
-    nbr_.assign(list_.partners().begin(), list_.partners().end());
+    start_ = list_.start();
+    nbr_ = list_.partners();
     // Each sphere's stiffness: the sum of its list pairs' 1/sigma^2 (an upper
     // bound on its touching pairs') and its walls'.
     std::vector<double> k(n, 0.0);
@@ -409,9 +410,9 @@ class Relaxer {
   std::vector<double> w_;  // inverse masses, set with the list
   std::vector<double> r_, rs_, skin2_;  // radii; at the current scale; squared skin margins
   std::vector<Vec> x_, v_, f_, xref_;
-  std::vector<std::uint32_t> start_, nbr_;
+  std::span<const std::uint32_t> start_, nbr_;  // the Verlet list: list_'s rows, valid until its next update
   int threads_ = 1;
-  ContactList<D> list_;              // builds the Verlet list (start_, nbr_)
+  ContactList<D> list_;              // builds the Verlet list
   std::vector<Sphere<D>> inflated_;  // the spheres it is built from
   std::vector<std::uint32_t> range_, cross_start_, cross_i_;
   double lambda_ = 1, built_lambda_ = 1;
