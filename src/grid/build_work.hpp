@@ -22,6 +22,8 @@ struct LevelSortWork {
 /// rule (HGrid::build takes its shifts and bucket counts from here).
 inline LevelSortWork level_sort_work(std::uint64_t cells, std::uint64_t n) {
   constexpr int kBitsPerPass = 8;  // base/radix.hpp
+  if (n <= detail::kDirectParticles && cells <= detail::kDirectCellsPerParticle * n + detail::kDirectMinCells)
+    return {0, 0, std::max<std::uint64_t>(cells, 1)};  // one counting sort over the cells, no radix pass
   const int coarse_bits = static_cast<int>(std::bit_width(n / detail::kCoarseBucket));
   const std::uint64_t last = std::max<std::uint64_t>(cells, 1) - 1;
   const int shift = std::max(0, static_cast<int>(std::bit_width(last)) - coarse_bits);

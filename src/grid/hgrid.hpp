@@ -188,7 +188,7 @@ class HGrid {
     detail::UninitVector<std::uint64_t> key_in, key, tkey, k0, tk;
     detail::UninitVector<std::uint32_t> coarse, order, torder, tid, t;
     detail::UninitVector<Sphere<D>> tsph;
-    std::vector<std::uint32_t> cursor, bucket_begin, coarse_base, cells_before;
+    std::vector<std::uint32_t> cursor, bucket_begin, coarse_base, cells_before, sorting;
     std::vector<int> shift, level_of;
     std::vector<double> d_max_of;               // per thread
     std::vector<std::exception_ptr> error_of;   // per thread
@@ -197,7 +197,8 @@ class HGrid {
       return (key_in.capacity() + key.capacity() + tkey.capacity() + k0.capacity() + tk.capacity()) *
                  sizeof(std::uint64_t) +
              (coarse.capacity() + order.capacity() + torder.capacity() + tid.capacity() + t.capacity() +
-              cursor.capacity() + bucket_begin.capacity() + coarse_base.capacity() + cells_before.capacity()) *
+              cursor.capacity() + bucket_begin.capacity() + coarse_base.capacity() + cells_before.capacity() +
+              sorting.capacity()) *
                  sizeof(std::uint32_t) +
              d_max_of.capacity() * sizeof(double) + error_of.capacity() * sizeof(std::exception_ptr) +
              level_of.capacity() * sizeof(int) +

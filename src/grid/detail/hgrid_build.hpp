@@ -233,9 +233,18 @@ void HGrid<D, B>::build(std::span<const Sphere<D>> spheres, Scratch& ws) {
     for (std::uint32_t c = coarse_base[h]; c < coarse_base[h + 1]; ++c) level_of[c] = h;
   auto& cells_before = ws.cells_before;  // distinct keys of each coarse bucket, then their prefix sum
   cells_before.assign(C + 1, 0);
+  // A bucket of one key (shift 0: a level sorted by one counting sort over
+  // its cells, grid/build_work.hpp) is in order already and holds one cell
+  // if it is not empty; only the others are sorted, on T threads.
+  auto& sorting = ws.sorting;
+  sorting.clear();
+  for (std::uint32_t c = 0; c < C; ++c) {
+    if (shift[level_of[c]] > 0) sorting.push_back(c);
+    else cells_before[c + 1] = bucket_begin[c + 1] != bucket_begin[c];
+  }
   {
     std::size_t most = 0;
-    for (std::size_t c = 0; c < C; ++c) most = std::max<std::size_t>(most, bucket_begin[c + 1] - bucket_begin[c]);
+    for (const std::uint32_t c : sorting) most = std::max<std::size_t>(most, bucket_begin[c + 1] - bucket_begin[c]);
     auto& tkey = ws.tkey;
     auto &order = ws.order, &torder = ws.torder, &tid = ws.tid;
     auto& tsph = ws.tsph;
@@ -243,7 +252,8 @@ void HGrid<D, B>::build(std::span<const Sphere<D>> spheres, Scratch& ws) {
     for (auto* v : {&order, &torder, &tid}) v->resize(all);
     tkey.resize(all);
     tsph.resize(all);
-    detail::parallel_for(T, C, [&](std::size_t c, int t) {
+    detail::parallel_for(T, sorting.size(), [&](std::size_t u, int t) {
+      const std::uint32_t c = sorting[u];
       const std::size_t o = per * static_cast<std::size_t>(t);
       const std::uint32_t b = bucket_begin[c], n = bucket_begin[c + 1] - b;
       const std::uint64_t* k = key + b;
@@ -275,13 +285,14 @@ void HGrid<D, B>::build(std::span<const Sphere<D>> spheres, Scratch& ws) {
     levels_[h].bucket_base = cells_before[coarse_base[h]];
     levels_[h].buckets = cells_before[coarse_base[h + 1]] - cells_before[coarse_base[h]];
   }
-  detail::parallel_for(T, C, [&](std::size_t c, int) {
+  detail::parallel_for(T, sorting.size(), [&](std::size_t u, int) {
+    const std::uint32_t c = sorting[u];
     const auto& lv = levels_[level_of[c]];
     const std::uint32_t b = bucket_begin[c], n = bucket_begin[c + 1] - b;
     const std::uint64_t* k = key + b;
     // Two coarse buckets share a bitmap word only if they hold fewer than
     // 64 keys each (shift < 6): then the word is set atomically.
-    const bool shared = shift[level_of[c]] < 6;
+    const bool shared = T > 1 && shift[level_of[c]] < 6;
     std::uint64_t bucket = cells_before[c];
     for (std::uint32_t m = 0; m < n; ++m) {
       if (m > 0 && k[m] == k[m - 1]) continue;
@@ -295,6 +306,16 @@ void HGrid<D, B>::build(std::span<const Sphere<D>> spheres, Scratch& ws) {
       ++bucket;
     }
   });
+  // The buckets of one key, on one thread (their levels' words are their own).
+  for (std::uint32_t c = 0; c < C; ++c) {
+    if (shift[level_of[c]] > 0 || bucket_begin[c + 1] == bucket_begin[c]) continue;
+    const auto& lv = levels_[level_of[c]];
+    start_[cells_before[c]] = bucket_begin[c];
+    if (lv.ranked) {
+      const std::uint64_t k = key[bucket_begin[c]];
+      words_[lv.word_base + (k >> 6)] |= std::uint64_t{1} << (k & 63);
+    }
+  }
   // The hashed levels' tables, on one thread (a level's coarse buckets would
   // share its table), in the same order as the buckets.
   for (int h = 0; h < L; ++h) {

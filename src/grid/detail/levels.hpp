@@ -32,6 +32,18 @@ inline constexpr std::uint64_t kRankMinCells = 1 << 16;
 /// at 1024 and 58 at 65536).
 inline constexpr std::uint64_t kCoarseBucket = 4096;
 
+/// A small grid skips the two steps: every level of at most
+/// kDirectCellsPerParticle cells per particle of the grid (plus
+/// kDirectMinCells) is sorted by one counting sort over its cells, its
+/// coarse buckets being the cells themselves, when the grid holds at most
+/// kDirectParticles particles: the scatter's random writes then stay in the
+/// cache (2 MB of 3D spheres). At N = 2 10^4, one 3D level of 12 000 cells
+/// (a pour's bed): 0.46 -> 0.36 ms per rebuild (its two radix passes and the
+/// permutation were a third of it).
+inline constexpr std::uint64_t kDirectParticles = std::uint64_t{1} << 16;
+inline constexpr std::uint64_t kDirectCellsPerParticle = 4;
+inline constexpr std::uint64_t kDirectMinCells = std::uint64_t{1} << 12;
+
 inline std::uint64_t hash_key(std::uint64_t k) { return k * 0x9E3779B97F4A7C15ull; }
 
 template <int D>
