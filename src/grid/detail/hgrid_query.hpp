@@ -369,11 +369,13 @@ void HGrid<D, B>::gather_and_test(int h, std::uint32_t beg, std::uint32_t end, c
   // The run: the cell's particles, then the short ranges' candidates, then
   // the long ranges, with their sorted positions; padded to a multiple of
   // four with copies of the last (their lanes are masked off).
-  alignas(32) std::array<Sphere<D>, kGatherMax + 4> gs;
+  alignas(32) std::array<std::array<double, kGatherMax + 4>, D + 1> gs;  // by coordinate, then radius
   std::array<std::uint32_t, kGatherMax + 4> gi;
   std::uint32_t m = 0;
   const auto put = [&](std::uint32_t q) {
-    gs[m] = sorted_[q];
+    const Sphere<D>& sq = sorted_[q];
+    for (int k = 0; k < D; ++k) gs[k][m] = sq.x[k];
+    gs[D][m] = sq.r;
     gi[m++] = q;
   };
   for (std::uint32_t q = beg; q < end; ++q) put(q);
@@ -381,16 +383,18 @@ void HGrid<D, B>::gather_and_test(int h, std::uint32_t beg, std::uint32_t end, c
   for (int k = 0; k < n_nb; ++k)
     for (std::uint32_t q = nb[k].first; q < nb[k].second; ++q) put(q);
   for (std::uint32_t t = m; t < m + 3; ++t) {
-    gs[t] = gs[m - 1];
+    for (int k = 0; k <= D; ++k) gs[k][t] = gs[k][m - 1];
     gi[t] = gi[m - 1];
   }
   // As test_range: dense or sparse appends (Emit::dense), the same pairs.
   const auto run = [&]<Boundary TB, bool Dense>(std::uint32_t p) {
-    const Sphere<D> sp = gs[p - beg];
+    Sphere<D> sp;
+    for (int k = 0; k < D; ++k) sp.x[k] = gs[k][p - beg];
+    sp.r = gs[D][p - beg];
     std::uint32_t n = f.n, hits = 0;  // in registers over the run
     const std::uint32_t t0 = p - beg + 1;
     for (std::uint32_t t = t0; t < m; t += 4) {
-      unsigned bits = detail::overlap4<D, TB>(sp, gs.data() + t, box_);
+      unsigned bits = detail::overlap4_soa<D, TB>(sp, gs, t, box_);
       if (t + 4 > m) bits &= (1u << (m - t)) - 1;
       if (!Dense && bits == 0) continue;
       if (n + 4 >= f.buf.size()) {  // room for four, and never full on return

@@ -65,6 +65,26 @@ inline unsigned overlap4(const Sphere<D>& p, const Sphere<D>* s, const Extent<D>
   return static_cast<unsigned>(_mm256_movemask_pd(_mm256_cmp_pd(s2, _mm256_mul_pd(rs, rs), _CMP_LT_OQ)));
 }
 
+/// The same test against spheres t..t+3 of coordinate arrays a[0..D)
+/// and radii a[D] (a gathered run, stored by coordinate): four loads
+/// instead of four loads and eight shuffles (a pour's list build: -8 %).
+template <int D, Boundary B, class Arrays>
+inline unsigned overlap4_soa(const Sphere<D>& p, const Arrays& a, std::uint32_t t, const Extent<D>& box) {
+  __m256d s2 = _mm256_setzero_pd();
+  for (int k = 0; k < D; ++k) {
+    __m256d dx = _mm256_sub_pd(_mm256_loadu_pd(a[k].data() + t), _mm256_set1_pd(p.x[k]));
+    if constexpr (B == Boundary::periodic) {
+      const __m256d w = _mm256_set1_pd(box[k]), half = _mm256_set1_pd(0.5 * box[k]),
+                    nhalf = _mm256_set1_pd(-0.5 * box[k]);
+      const __m256d above = _mm256_cmp_pd(dx, half, _CMP_GT_OQ), below = _mm256_cmp_pd(dx, nhalf, _CMP_LT_OQ);
+      dx = _mm256_blendv_pd(_mm256_blendv_pd(dx, _mm256_sub_pd(dx, w), above), _mm256_add_pd(dx, w), below);
+    }
+    s2 = _mm256_add_pd(s2, _mm256_mul_pd(dx, dx));
+  }
+  const __m256d rs = _mm256_add_pd(_mm256_set1_pd(p.r), _mm256_loadu_pd(a[D].data() + t));
+  return static_cast<unsigned>(_mm256_movemask_pd(_mm256_cmp_pd(s2, _mm256_mul_pd(rs, rs), _CMP_LT_OQ)));
+}
+
 /// For each 4-bit mask, the 32-bit lanes of four pairs (p, q_0) ... (p, q_3)
 /// that make its pairs, packed to the front.
 inline constexpr auto kAppendLanes = [] {
@@ -114,6 +134,18 @@ template <int D, Boundary B>
 inline unsigned overlap4(const Sphere<D>& p, const Sphere<D>* s, const Extent<D>& box) {
   unsigned bits = 0;
   for (unsigned t = 0; t < 4; ++t) bits |= static_cast<unsigned>(overlap<D, B>(p, s[t], box)) << t;
+  return bits;
+}
+
+template <int D, Boundary B, class Arrays>
+inline unsigned overlap4_soa(const Sphere<D>& p, const Arrays& a, std::uint32_t t, const Extent<D>& box) {
+  unsigned bits = 0;
+  for (unsigned u = 0; u < 4; ++u) {
+    Sphere<D> q;
+    for (int k = 0; k < D; ++k) q.x[k] = a[k][t + u];
+    q.r = a[D][t + u];
+    bits |= static_cast<unsigned>(overlap<D, B>(p, q, box)) << u;
+  }
   return bits;
 }
 
