@@ -320,6 +320,9 @@ class ContactList {
     return std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(threads_), n / kMinRowsPerThread));
   }
   static constexpr std::size_t kMinRowsPerThread = 2048;
+  /// The displacement check's filter (update_from): a particle whose margin
+  /// is surely above the second smallest so far skips its square root.
+  static constexpr double kSqrtSkipRel = 1e-9;
 
   template <class Get>
   bool update_from(std::size_t n, Get&& get) {
@@ -342,6 +345,26 @@ class ContactList {
     const Vec* const xref = xref_.data();
     Sphere<D>* const next = next_.data();
     Vec* const raw = raw_.data();
+    // The reference of the displacements: on a periodic axis the wrapped
+    // centre (images are then at most one side away, whose change the box
+    // term bounds; an unwrapped coordinate many sides out moves with every
+    // change of the side), on a walled one the user's coordinate (a moving
+    // wall moves no particle).
+    const auto raw_of = [&](auto triclinic, const Sphere<D>& q, const Sphere<D>& local) {
+      Vec w;
+      if constexpr (decltype(triclinic)::value) {
+        std::array<double, D> f = tb.fractional(local.x);
+        for (auto& v : f) v -= std::floor(v);
+        w = tb.cartesian(f);  // the centre wrapped into the lattice's cell
+      } else {
+        for (int k = 0; k < D; ++k) w[k] = bx.periodic[k] ? local.x[k] : q.x[k];
+      }
+      return w;
+    };
+    // Stored by the loop only when a build is certain; else by a second
+    // pass if the check calls for one (most steps do not: their writes
+    // were a third of the loop's memory traffic).
+    const bool raw_now = !same_count || exact;
     // The loop compiled twice, for a triclinic box and for the others.
     const auto read = [&](auto triclinic) {
       detail::parallel_for(static_cast<int>(B), B, [&](std::size_t b, int) {
@@ -374,34 +397,30 @@ class ContactList {
               }
             }
             next[i] = local;
-            // The reference of the displacements: on a periodic axis the
-            // wrapped centre (images are then at most one side away, whose
-            // change the box term bounds; an unwrapped coordinate many sides
-            // out moves with every change of the side), on a walled one the
-            // user's coordinate (a moving wall moves no particle).
-            if constexpr (decltype(triclinic)::value) {
-              std::array<double, D> f = tb.fractional(local.x);
-              for (auto& v : f) v -= std::floor(v);
-              raw[i] = tb.cartesian(f);  // the centre wrapped into the lattice's cell
+            const Vec rw = raw_of(triclinic, q, local);
+            if (raw_now) {
+              raw[i] = rw;
             } else {
-              for (int k = 0; k < D; ++k) raw[i][k] = bx.periodic[k] ? local.x[k] : q.x[k];
-            }
-            if (same_count && !exact) {
               double u2 = 0;
               if constexpr (decltype(triclinic)::value) {  // the nearest lattice image of the displacement
-                const Vec sh = tb.cartesian(detail::nearest_shift<D>(tb, xref[i], raw[i]));
+                const Vec sh = tb.cartesian(detail::nearest_shift<D>(tb, xref[i], rw));
                 for (int k = 0; k < D; ++k) {
-                  const double u = raw[i][k] - xref[i][k] + sh[k];
+                  const double u = rw[k] - xref[i][k] + sh[k];
                   u2 += u * u;
                 }
               } else {
                 for (int k = 0; k < D; ++k) {
-                  double u = raw[i][k] - xref[i][k];
+                  double u = rw[k] - xref[i][k];
                   if (bx.periodic[k]) u = detail::min_image(u, bx.side[k]);
                   u2 += u * u;
                 }
               }
-              two_smallest(rbig[i] - q.r - std::sqrt(u2), m1, m2);
+              // The margin a - |u| matters only below m2: the square root
+              // is taken only where it could be (u2 within a relative 1e-9
+              // of (a - m2)^2 or above; rounding cannot bridge that gap),
+              // so the two smallest are the same, bit for bit.
+              const double a = rbig[i] - q.r, d = a - m2;
+              if (!(d > kSqrtSkipRel * a && u2 < d * d * (1 - kSqrtSkipRel))) two_smallest(a - std::sqrt(u2), m1, m2);
             }
           }
         } catch (...) {
@@ -446,6 +465,13 @@ class ContactList {
       }
       rebuild = n > 1 && m1 + m2 <= shift + kRoundingSlack * (scale + 2 * rbig_max_);
       if (rebuild) used = std::max(0.0, margin_built_ - (m1 + m2));
+    }
+    if (rebuild && !raw_now) {  // the references the loop did not store
+      const auto fill = [&](auto triclinic) {
+        for (std::size_t i = 0; i < n; ++i) raw[i] = raw_of(triclinic, get(i), next[i]);
+      };
+      if (bx.triclinic) fill(std::true_type{});
+      else fill(std::false_type{});
     }
     stats_.seconds_check += seconds_since(t0);
     if (rebuild) {
