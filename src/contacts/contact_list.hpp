@@ -585,13 +585,23 @@ class ContactList {
     }
     const detail::PairKeys& ps = *keys_of_;
     const std::span<const Sphere<D>> gspan(gs_.data(), gs_.size());
-    const auto collect = [&](const auto& grid) {  // the grid's pairs as keys, one list per thread
-      if (T <= 1) {
-        std::vector<std::uint64_t>& out = keys_[0];  // held, not looked up, for each pair
-        grid.template for_each_pair<PairsOnly>([&out, ps](std::uint32_t i, std::uint32_t j) { out.push_back(ps.key(i, j)); });
-      } else
-        grid.template for_each_pair<PairsOnly>(
-            [&](int t, std::uint32_t i, std::uint32_t j) { keys_[static_cast<std::size_t>(t)].push_back(ps.key(i, j)); });
+    // The grid's pairs as keys, one list per thread, stored a batch at a
+    // time (base/threads.hpp, kTakesBatches).
+    struct Keys {
+      std::vector<std::vector<std::uint64_t>>& keys;
+      detail::PairKeys ps;
+      void operator()(int t, std::uint32_t i, std::uint32_t j) { keys[static_cast<std::size_t>(t)].push_back(ps.key(i, j)); }
+      void pairs(int t, std::span<const IndexPair> s) {
+        std::vector<std::uint64_t>& out = keys[static_cast<std::size_t>(t)];
+        const std::size_t at = out.size();
+        out.resize(at + s.size());
+        std::uint64_t* const o = out.data() + at;
+        for (std::size_t k = 0; k < s.size(); ++k) o[k] = ps.key(s[k].first, s[k].second);
+      }
+    };
+    const auto collect = [&](const auto& grid) {
+      Keys sink{keys_, ps};
+      grid.template for_each_pair<PairsOnly>(sink);
     };
     const auto search = [&](auto& grid) {
       const auto t0 = Clock::now();

@@ -358,6 +358,16 @@ class HGrid {
       }
     }
     void flush() {
+      if constexpr (!Probe && kTakesBatches<F>) {  // base/threads.hpp
+        for (std::uint32_t k = 0; k < n; ++k) {
+          const std::uint32_t i = id[buf[k].first], j = id[buf[k].second];
+          const std::uint32_t lo = std::min(i, j);
+          buf[k] = {lo, i ^ j ^ lo};  // no branch: the order of i and j is random
+        }
+        f.pairs(std::span<const IndexPair>(buf.data(), n));
+        n = 0;
+        return;
+      }
       for (std::uint32_t k = 0; k < n; ++k) {
         if constexpr (Probe) {
           f(buf[k].first, id[buf[k].second]);
@@ -481,6 +491,11 @@ class HGrid {
     F& f;
     int t;
     void operator()(std::uint32_t i, std::uint32_t j) { f(t, i, j); }
+    void pairs(std::span<const IndexPair> s)
+      requires kTakesBatchesWithThread<F>
+    {
+      f.pairs(t, s);
+    }
   };
 
   template <class Count, class F>
