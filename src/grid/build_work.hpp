@@ -18,11 +18,12 @@ struct LevelSortWork {
   std::uint64_t buckets = 0;  // coarse buckets of the level
 };
 
-/// For a level of `cells` cells in a grid of `n` particles: the build's own
-/// rule (HGrid::build takes its shifts and bucket counts from here).
-inline LevelSortWork level_sort_work(std::uint64_t cells, std::uint64_t n) {
+/// For a level of `cells` cells in a grid of `n` particles on `levels`
+/// levels: the build's own rule (HGrid::build takes its shifts and bucket
+/// counts from here).
+inline LevelSortWork level_sort_work(std::uint64_t cells, std::uint64_t n, int levels) {
   constexpr int kBitsPerPass = 8;  // base/radix.hpp
-  if (n <= detail::kDirectParticles && cells <= detail::kDirectCellsPerParticle * n + detail::kDirectMinCells)
+  if (levels == 1 && n <= detail::kDirectParticles && cells <= detail::kDirectCellsPerParticle * n + detail::kDirectMinCells)
     return {0, 0, std::max<std::uint64_t>(cells, 1)};  // one counting sort over the cells, no radix pass
   const int coarse_bits = static_cast<int>(std::bit_width(n / detail::kCoarseBucket));
   const std::uint64_t last = std::max<std::uint64_t>(cells, 1) - 1;

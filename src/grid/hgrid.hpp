@@ -131,7 +131,7 @@ class HGrid {
   SortWork sort_work() const {
     SortWork w;
     for (std::size_t h = 0; h < levels_.size(); ++h) {
-      const LevelSortWork l = level_sort_work(levels_[h].cells(), size());
+      const LevelSortWork l = level_sort_work(levels_[h].cells(), size(), levels());
       w.particle_passes += double(l.passes) * double(level_begin_[h + 1] - level_begin_[h]);
       w.bucket_passes += double(l.passes) * double(l.buckets);
     }

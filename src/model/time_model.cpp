@@ -108,7 +108,7 @@ TimeTerms expected_time_terms(const Distribution& dist, const ModelParams& p, co
     t.occupied_cells += occupied;
     t.level_steps += h * nh;
     const LevelSortWork sw = level_sort_work(static_cast<std::uint64_t>(std::max(1.0, laid_out)),
-                                             static_cast<std::uint64_t>(n));
+                                             static_cast<std::uint64_t>(n), L);
     t.sort_passes += sw.passes * nh;
     t.bucket_passes += sw.passes * double(sw.buckets);
     const double mh = nh / cells;

@@ -79,7 +79,7 @@ void HGrid<D, B>::build(std::span<const Sphere<D>> spheres, Scratch& ws) {
   shift.assign(L, 0);
   coarse_base.assign(L + 1, 0);
   for (int h = 0; h < L; ++h) {
-    const LevelSortWork w = level_sort_work(levels_[h].cells(), N);
+    const LevelSortWork w = level_sort_work(levels_[h].cells(), N, L);
     shift[h] = w.shift;
     coarse_base[h + 1] = coarse_base[h] + static_cast<std::uint32_t>(w.buckets);
   }
