@@ -56,7 +56,9 @@ class HGrid {
   /// for more than one is stated there). Search direction and counting are
   /// compile-time policies. The pairs and the counters are the same for any
   /// number of threads; only the order of the calls differs. A const grid
-  /// may be queried from several threads at once.
+  /// may be queried from several threads at once. A callback object with
+  /// a member pairs(span) (or pairs(t, span)) gets the pairs in batches
+  /// instead (base/threads.hpp, kTakesBatches).
   template <Search S, class Count = Uncounted, class F>
   Counters query(F&& f, int threads) const;
   /// Same, on the params struct's threads.
