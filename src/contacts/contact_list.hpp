@@ -321,8 +321,12 @@ class ContactList {
   }
   static constexpr std::size_t kMinRowsPerThread = 2048;
   /// The displacement check's filter (update_from): a particle whose margin
-  /// is surely above the second smallest so far skips its square root.
+  /// is surely above the second smallest so far skips its square root:
+  /// u2 below (a - m2)^2 by a relative kSqrtSkipRel, where a - m2 exceeds
+  /// kSqrtSkipGuard |a| (so that the gap, 5e-10 (a - m2) > 5e-15 |a|, is
+  /// far beyond the rounding of a - sqrt(u2), ~3e-16 (|a| + |u|)).
   static constexpr double kSqrtSkipRel = 1e-9;
+  static constexpr double kSqrtSkipGuard = 1e-5;
 
   template <class Get>
   bool update_from(std::size_t n, Get&& get) {
@@ -420,7 +424,8 @@ class ContactList {
               // of (a - m2)^2 or above; rounding cannot bridge that gap),
               // so the two smallest are the same, bit for bit.
               const double a = rbig[i] - q.r, d = a - m2;
-              if (!(d > kSqrtSkipRel * a && u2 < d * d * (1 - kSqrtSkipRel))) two_smallest(a - std::sqrt(u2), m1, m2);
+              if (!(d > kSqrtSkipGuard * std::abs(a) && u2 < d * d * (1 - kSqrtSkipRel)))
+                two_smallest(a - std::sqrt(u2), m1, m2);
             }
           }
         } catch (...) {
