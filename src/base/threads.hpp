@@ -62,7 +62,7 @@ using IndexPair = std::pair<std::uint32_t, std::uint32_t>;
 /// taking the thread index, pairs(t, span)) is handed the pairs in batches
 /// of up to 64, in the order single calls would have come, one call per
 /// batch instead of one per pair (a contact list's build stores each batch
-/// in one go: -10 % on a pour's bed). Its f(i, j) is then not called by a
+/// in one go: -5 to -9 % on a pour's bed). Its f(i, j) is then not called by a
 /// grid's pair queries.
 template <class F>
 inline constexpr bool kTakesBatches = requires(F& f, std::span<const IndexPair> s) { f.pairs(s); };
