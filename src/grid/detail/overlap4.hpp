@@ -25,6 +25,25 @@ namespace hgrid::detail {
 #if defined(__AVX2__)
 inline constexpr bool kOverlap4 = true;
 
+/// Bit t set if sphere p overlaps the sphere of lane t (centres x[0..D),
+/// radii r): the scalar test's operations, lane by lane.
+template <int D, Boundary B>
+inline unsigned overlap4_lanes(const Sphere<D>& p, const __m256d (&x)[D], __m256d r, const Extent<D>& box) {
+  __m256d s2 = _mm256_setzero_pd();
+  for (int k = 0; k < D; ++k) {
+    __m256d dx = _mm256_sub_pd(x[k], _mm256_set1_pd(p.x[k]));
+    if constexpr (B == Boundary::periodic) {  // min_image: dx - a above a/2, dx + a below -a/2
+      const __m256d a = _mm256_set1_pd(box[k]), half = _mm256_set1_pd(0.5 * box[k]),
+                    nhalf = _mm256_set1_pd(-0.5 * box[k]);
+      const __m256d above = _mm256_cmp_pd(dx, half, _CMP_GT_OQ), below = _mm256_cmp_pd(dx, nhalf, _CMP_LT_OQ);
+      dx = _mm256_blendv_pd(_mm256_blendv_pd(dx, _mm256_sub_pd(dx, a), above), _mm256_add_pd(dx, a), below);
+    }
+    s2 = _mm256_add_pd(s2, _mm256_mul_pd(dx, dx));
+  }
+  const __m256d rs = _mm256_add_pd(_mm256_set1_pd(p.r), r);
+  return static_cast<unsigned>(_mm256_movemask_pd(_mm256_cmp_pd(s2, _mm256_mul_pd(rs, rs), _CMP_LT_OQ)));
+}
+
 /// Bit t set if sphere p overlaps s[t], t = 0..3.
 template <int D, Boundary B>
 inline unsigned overlap4(const Sphere<D>& p, const Sphere<D>* s, const Extent<D>& box) {
@@ -50,19 +69,7 @@ inline unsigned overlap4(const Sphere<D>& p, const Sphere<D>* s, const Extent<D>
     x[1] = _mm256_permute4x64_pd(v, 0b10110001);  // lanes 1 0 3 2
     r = _mm256_permute4x64_pd(w, 0b11000110);     // lanes 2 1 0 3
   }
-  __m256d s2 = _mm256_setzero_pd();
-  for (int k = 0; k < D; ++k) {
-    __m256d dx = _mm256_sub_pd(x[k], _mm256_set1_pd(p.x[k]));
-    if constexpr (B == Boundary::periodic) {  // min_image: dx - a above a/2, dx + a below -a/2
-      const __m256d a = _mm256_set1_pd(box[k]), half = _mm256_set1_pd(0.5 * box[k]),
-                    nhalf = _mm256_set1_pd(-0.5 * box[k]);
-      const __m256d above = _mm256_cmp_pd(dx, half, _CMP_GT_OQ), below = _mm256_cmp_pd(dx, nhalf, _CMP_LT_OQ);
-      dx = _mm256_blendv_pd(_mm256_blendv_pd(dx, _mm256_sub_pd(dx, a), above), _mm256_add_pd(dx, a), below);
-    }
-    s2 = _mm256_add_pd(s2, _mm256_mul_pd(dx, dx));
-  }
-  const __m256d rs = _mm256_add_pd(_mm256_set1_pd(p.r), r);
-  return static_cast<unsigned>(_mm256_movemask_pd(_mm256_cmp_pd(s2, _mm256_mul_pd(rs, rs), _CMP_LT_OQ)));
+  return overlap4_lanes<D, B>(p, x, r, box);
 }
 
 /// The same test against spheres t..t+3 of coordinate arrays a[0..D)
@@ -70,19 +77,9 @@ inline unsigned overlap4(const Sphere<D>& p, const Sphere<D>* s, const Extent<D>
 /// instead of four loads and eight shuffles (a pour's list build: -8 %).
 template <int D, Boundary B, class Arrays>
 inline unsigned overlap4_soa(const Sphere<D>& p, const Arrays& a, std::uint32_t t, const Extent<D>& box) {
-  __m256d s2 = _mm256_setzero_pd();
-  for (int k = 0; k < D; ++k) {
-    __m256d dx = _mm256_sub_pd(_mm256_loadu_pd(a[k].data() + t), _mm256_set1_pd(p.x[k]));
-    if constexpr (B == Boundary::periodic) {
-      const __m256d w = _mm256_set1_pd(box[k]), half = _mm256_set1_pd(0.5 * box[k]),
-                    nhalf = _mm256_set1_pd(-0.5 * box[k]);
-      const __m256d above = _mm256_cmp_pd(dx, half, _CMP_GT_OQ), below = _mm256_cmp_pd(dx, nhalf, _CMP_LT_OQ);
-      dx = _mm256_blendv_pd(_mm256_blendv_pd(dx, _mm256_sub_pd(dx, w), above), _mm256_add_pd(dx, w), below);
-    }
-    s2 = _mm256_add_pd(s2, _mm256_mul_pd(dx, dx));
-  }
-  const __m256d rs = _mm256_add_pd(_mm256_set1_pd(p.r), _mm256_loadu_pd(a[D].data() + t));
-  return static_cast<unsigned>(_mm256_movemask_pd(_mm256_cmp_pd(s2, _mm256_mul_pd(rs, rs), _CMP_LT_OQ)));
+  __m256d x[D];
+  for (int k = 0; k < D; ++k) x[k] = _mm256_loadu_pd(a[k].data() + t);
+  return overlap4_lanes<D, B>(p, x, _mm256_loadu_pd(a[D].data() + t), box);
 }
 
 /// For each 4-bit mask, the 32-bit lanes of four pairs (p, q_0) ... (p, q_3)
