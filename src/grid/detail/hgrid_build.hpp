@@ -238,10 +238,11 @@ void HGrid<D, B>::build(std::span<const Sphere<D>> spheres, Scratch& ws) {
   // if it is not empty; only the others are sorted, on T threads.
   auto& sorting = ws.sorting;
   sorting.clear();
-  for (std::uint32_t c = 0; c < C; ++c) {
-    if (shift[level_of[c]] > 0) sorting.push_back(c);
-    else cells_before[c + 1] = bucket_begin[c + 1] != bucket_begin[c];
-  }
+  for (int h = 0; h < L; ++h)
+    for (std::uint32_t c = coarse_base[h]; c < coarse_base[h + 1]; ++c) {
+      if (shift[h] > 0) sorting.push_back(c);
+      else cells_before[c + 1] = bucket_begin[c + 1] != bucket_begin[c];
+    }
   {
     std::size_t most = 0;
     for (const std::uint32_t c : sorting) most = std::max<std::size_t>(most, bucket_begin[c + 1] - bucket_begin[c]);
@@ -307,13 +308,16 @@ void HGrid<D, B>::build(std::span<const Sphere<D>> spheres, Scratch& ws) {
     }
   });
   // The buckets of one key, on one thread (their levels' words are their own).
-  for (std::uint32_t c = 0; c < C; ++c) {
-    if (shift[level_of[c]] > 0 || bucket_begin[c + 1] == bucket_begin[c]) continue;
-    const auto& lv = levels_[level_of[c]];
-    start_[cells_before[c]] = bucket_begin[c];
-    if (lv.ranked) {
-      const std::uint64_t k = key[bucket_begin[c]];
-      words_[lv.word_base + (k >> 6)] |= std::uint64_t{1} << (k & 63);
+  for (int h = 0; h < L; ++h) {
+    if (shift[h] > 0) continue;
+    const auto& lv = levels_[h];
+    for (std::uint32_t c = coarse_base[h]; c < coarse_base[h + 1]; ++c) {
+      if (bucket_begin[c + 1] == bucket_begin[c]) continue;
+      start_[cells_before[c]] = bucket_begin[c];
+      if (lv.ranked) {
+        const std::uint64_t k = key[bucket_begin[c]];
+        words_[lv.word_base + (k >> 6)] |= std::uint64_t{1} << (k & 63);
+      }
     }
   }
   // The hashed levels' tables, on one thread (a level's coarse buckets would
