@@ -265,10 +265,11 @@ int main(int argc, char** argv) {
       const double builds = double(std::max<std::uint64_t>(1, r.stats.builds));
       const double steps = double(std::max<std::uint64_t>(1, r.stats.steps));
       std::printf("skin %g, sizes %s: %.3e s/frame, %.3e s/build (grid %.3e), %llu builds, per frame check %.3e test "
-                  "%.3e\n",
+                  "%.3e, %.2f candidates per particle\n",
                   profile_skin, list_sizes_name.empty() ? base_name.c_str() : list_sizes_name.c_str(),
                   r.seconds_per_step, r.stats.seconds_build / builds, r.stats.seconds_grid / builds,
-                  (unsigned long long)r.stats.builds, r.stats.seconds_check / steps, r.stats.seconds_test / steps);
+                  (unsigned long long)r.stats.builds, r.stats.seconds_check / steps, r.stats.seconds_test / steps,
+                  double(r.stats.candidates_tested) / steps / double(last.r.size()));
     }
     return 0;
   }

@@ -295,14 +295,7 @@ class ContactList {
   /// of Mask) take the minimum image.
   template <unsigned Mask>
   static bool touching(const Sphere<D>& p, const Sphere<D>& q, const Extent<D>& side) {
-    double s = 0.0;
-    for (int k = 0; k < D; ++k) {
-      double dx = q.x[k] - p.x[k];
-      if (Mask & (1u << k)) dx = detail::min_image(dx, side[k]);
-      s += dx * dx;
-    }
-    const double rs = p.r + q.r;
-    return s < rs * rs;
+    return detail::overlap_axes<D, Mask>(p, q, side);
   }
 
   /// Keeps m1 <= m2 the two smallest values seen, given one more.
@@ -653,7 +646,12 @@ class ContactList {
       for (const std::uint64_t k : l) sorted_keys_[by_second_[ps.second(k)]++] = k;
     fill_.assign(cstart_.begin(), cstart_.end() - 1);
     cand_.resize(total);
-    for (const std::uint64_t k : sorted_keys_) cand_[fill_[ps.first(k)]++] = ps.second(k);
+    first_.resize(total);
+    for (const std::uint64_t k : sorted_keys_) {
+      const std::uint32_t i = ps.first(k), at = fill_[i]++;
+      cand_[at] = ps.second(k);
+      first_[at] = i;
+    }
     // Commit.
     s_.swap(next_);
     xold_.swap(xref_);  // the build before's references, for two_step_travel
@@ -702,17 +700,70 @@ class ContactList {
   }
 
   /// The per-step test of every candidate: contacts into start_ / nbr_.
+  /// Four candidates at a time, in the order they are stored, whichever
+  /// rows they belong to (grid/detail/overlap4.hpp, which grid/hgrid.hpp
+  /// brings: each lane the scalar test's operations on its own two
+  /// spheres): a loop of fixed steps, where rows of a few candidates each
+  /// made a loop per row end at an unpredictable place. The contacts' rows
+  /// are stored beside them and counted into start_ per block.
   template <unsigned Mask>
   void test() {
-    test_with([s = s_.data()](std::uint32_t i) { return s[i]; },
-              [s = s_.data(), side = box_.side](const Sphere<D>& p, std::uint32_t j) {
-                return touching<Mask>(p, s[j], side);
-              });
+    const std::size_t n = s_.size();
+    const std::size_t total = cand_.size();
+    start_.resize(n + 1);
+    nbr_.resize(total);  // at most every candidate; cut to the contacts below
+    rows_.resize(total);
+    const Sphere<D>* const s = s_.data();
+    const Extent<D> side = box_.side;
+    const std::uint32_t* const cs = cstart_.data();
+    const std::uint32_t* const cand = cand_.data();
+    const std::uint32_t* const first = first_.data();
+    std::uint32_t* const out = nbr_.data();
+    std::uint32_t* const rows = rows_.data();
+    std::uint32_t* const st = start_.data();
+    const std::size_t B = blocks_for(n);
+    block_count_.resize(B + 1);
+    // Block b: rows i0..i1 - 1, candidates m0..m1 - 1; its contacts at its
+    // own candidates' place (never more than it has, and a four-lane store
+    // at w <= m ends within m..m + 3).
+    detail::parallel_for(static_cast<int>(B), B, [&](std::size_t b, int) {
+      const std::size_t i0 = n * b / B, i1 = n * (b + 1) / B;
+      const std::uint32_t m0 = cs[i0], m1 = cs[i1];
+      std::uint32_t w = m0, m = m0;
+      for (; m + 4 <= m1; m += 4) {
+        const unsigned bits = detail::overlap4_pairs<D, Mask>(s, first + m, cand + m, side);
+        detail::compress4(out + w, cand + m, bits);
+        w += detail::compress4(rows + w, first + m, bits);
+      }
+      if (m < m1) {  // the block's last one to three, the lanes past them a copy of the first
+        std::uint32_t fi[4], se[4], c_out[4], c_rows[4];
+        for (std::uint32_t u = 0; u < 4; ++u) {
+          fi[u] = first[m + (m + u < m1 ? u : 0)];
+          se[u] = cand[m + (m + u < m1 ? u : 0)];
+        }
+        const unsigned bits = detail::overlap4_pairs<D, Mask>(s, fi, se, side) & ((1u << (m1 - m)) - 1);
+        detail::compress4(c_out, se, bits);
+        const unsigned k = detail::compress4(c_rows, fi, bits);
+        for (unsigned u = 0; u < k; ++u) out[w + u] = c_out[u], rows[w + u] = c_rows[u];
+        w += k;
+      }
+      // Each row's first contact: the rows' counts, then their sums.
+      for (std::size_t i = i0; i < i1; ++i) st[i] = 0;
+      for (std::uint32_t c = m0; c < w; ++c) ++st[rows[c]];
+      std::uint32_t at = m0;
+      for (std::size_t i = i0; i < i1; ++i) {
+        const std::uint32_t k = st[i];
+        st[i] = at;
+        at += k;
+      }
+      block_count_[b] = w - m0;
+    });
+    join_blocks(B);
   }
 
-  /// The per-step test: row(i) once per particle (its sphere, kept in
-  /// registers over its row), hit(row(i), j) per candidate; contacts into
-  /// start_ / nbr_.
+  /// The per-step test one candidate at a time: row(i) once per particle
+  /// (its sphere, kept in registers over its row), hit(row(i), j) per
+  /// candidate; contacts into start_ / nbr_.
   template <class Row, class Hit>
   void test_with(Row&& row, Hit&& hit) {
     const std::size_t n = s_.size();
@@ -740,6 +791,17 @@ class ContactList {
       }
       block_count_[b] = w - cs[i0];
     });
+    join_blocks(B);
+  }
+
+  /// The blocks' contacts (block b's block_count_[b] at its first row's
+  /// candidates' place, start_ of its rows pointing there) moved down into
+  /// one run.
+  void join_blocks(std::size_t B) {
+    const std::size_t n = s_.size();
+    const std::uint32_t* const cs = cstart_.data();
+    std::uint32_t* const out = nbr_.data();
+    std::uint32_t* const st = start_.data();
     std::uint32_t at = 0;
     for (std::size_t b = 0; b < B; ++b) {
       const std::size_t i0 = n * b / B, i1 = n * (b + 1) / B;
@@ -783,6 +845,8 @@ class ContactList {
   std::vector<std::uint64_t> sorted_keys_;   // a build's candidates by their second index
   std::vector<std::vector<std::uint64_t>> keys_;  // per thread of a build's search
   std::vector<std::uint32_t> cstart_, cand_;      // the candidates, compressed rows
+  std::vector<std::uint32_t> first_;              // each candidate's row
+  detail::UninitVector<std::uint32_t> rows_;      // each contact's row (the per-step test's)
   std::vector<std::uint32_t> start_;
   detail::UninitVector<std::uint32_t> nbr_;       // the contacts
   std::vector<std::uint32_t> block_count_;

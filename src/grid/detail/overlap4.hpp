@@ -22,26 +22,71 @@
 
 namespace hgrid::detail {
 
+/// The scalar test (geometry.hpp's operations) with the minimum image on
+/// the axes whose bit is set in Periodic: a contact list's boundaries per
+/// axis.
+template <int D, unsigned Periodic>
+inline bool overlap_axes(const Sphere<D>& p, const Sphere<D>& q, const Extent<D>& box) {
+  double s2 = 0.0;
+  for (int k = 0; k < D; ++k) {
+    double dx = q.x[k] - p.x[k];
+    if (Periodic >> k & 1u) dx = min_image(dx, box[k]);
+    s2 += dx * dx;
+  }
+  const double rs = p.r + q.r;
+  return s2 < rs * rs;
+}
+
 #if defined(__AVX2__)
 inline constexpr bool kOverlap4 = true;
 
-/// Bit t set if sphere p overlaps the sphere of lane t (centres x[0..D),
-/// radii r): the scalar test's operations, lane by lane.
-template <int D, Boundary B>
-inline unsigned overlap4_lanes(const Sphere<D>& p, const __m256d (&x)[D], __m256d r, const Extent<D>& box) {
+/// Bit t set if the spheres of lane t overlap: centres p[0..D), radii pr
+/// against centres x[0..D), radii r; the scalar test's operations, lane by
+/// lane (dx = x - p, rs = pr + r); the axes whose bit is set in Periodic
+/// take the minimum image.
+template <int D, unsigned Periodic>
+inline unsigned overlap4_lanes_pq(const __m256d (&p)[D], __m256d pr, const __m256d (&x)[D], __m256d r,
+                                  const Extent<D>& box) {
   __m256d s2 = _mm256_setzero_pd();
   for (int k = 0; k < D; ++k) {
-    __m256d dx = _mm256_sub_pd(x[k], _mm256_set1_pd(p.x[k]));
-    if constexpr (B == Boundary::periodic) {  // min_image: dx - a above a/2, dx + a below -a/2
-      const __m256d a = _mm256_set1_pd(box[k]), half = _mm256_set1_pd(0.5 * box[k]),
-                    nhalf = _mm256_set1_pd(-0.5 * box[k]);
-      const __m256d above = _mm256_cmp_pd(dx, half, _CMP_GT_OQ), below = _mm256_cmp_pd(dx, nhalf, _CMP_LT_OQ);
-      dx = _mm256_blendv_pd(_mm256_blendv_pd(dx, _mm256_sub_pd(dx, a), above), _mm256_add_pd(dx, a), below);
+    __m256d dx = _mm256_sub_pd(x[k], p[k]);
+    if constexpr (Periodic != 0) {
+      if (Periodic >> k & 1u) {  // min_image: dx - a above a/2, dx + a below -a/2
+        const __m256d a = _mm256_set1_pd(box[k]), half = _mm256_set1_pd(0.5 * box[k]),
+                      nhalf = _mm256_set1_pd(-0.5 * box[k]);
+        const __m256d above = _mm256_cmp_pd(dx, half, _CMP_GT_OQ), below = _mm256_cmp_pd(dx, nhalf, _CMP_LT_OQ);
+        dx = _mm256_blendv_pd(_mm256_blendv_pd(dx, _mm256_sub_pd(dx, a), above), _mm256_add_pd(dx, a), below);
+      }
     }
     s2 = _mm256_add_pd(s2, _mm256_mul_pd(dx, dx));
   }
-  const __m256d rs = _mm256_add_pd(_mm256_set1_pd(p.r), r);
+  const __m256d rs = _mm256_add_pd(pr, r);
   return static_cast<unsigned>(_mm256_movemask_pd(_mm256_cmp_pd(s2, _mm256_mul_pd(rs, rs), _CMP_LT_OQ)));
+}
+
+/// The same, one sphere p against the four lanes.
+template <int D, unsigned Periodic>
+inline unsigned overlap4_lanes_axes(const Sphere<D>& p, const __m256d (&x)[D], __m256d r, const Extent<D>& box) {
+  __m256d pv[D];
+  for (int k = 0; k < D; ++k) pv[k] = _mm256_set1_pd(p.x[k]);
+  return overlap4_lanes_pq<D, Periodic>(pv, _mm256_set1_pd(p.r), x, r, box);
+}
+
+/// The same with one boundary for every axis.
+template <int D, Boundary B>
+inline unsigned overlap4_lanes(const Sphere<D>& p, const __m256d (&x)[D], __m256d r, const Extent<D>& box) {
+  return overlap4_lanes_axes<D, B == Boundary::periodic ? (1u << D) - 1 : 0u>(p, x, r, box);
+}
+
+/// Four (x0, x1, x2, r) rows l0..l3 as coordinates: lane t of x[k] is
+/// row t's x_k, of r its radius.
+inline void transpose4(__m256d l0, __m256d l1, __m256d l2, __m256d l3, __m256d (&x)[3], __m256d& r) {
+  const __m256d t0 = _mm256_unpacklo_pd(l0, l1), t1 = _mm256_unpackhi_pd(l0, l1);
+  const __m256d t2 = _mm256_unpacklo_pd(l2, l3), t3 = _mm256_unpackhi_pd(l2, l3);
+  x[0] = _mm256_permute2f128_pd(t0, t2, 0x20);
+  x[2] = _mm256_permute2f128_pd(t0, t2, 0x31);
+  x[1] = _mm256_permute2f128_pd(t1, t3, 0x20);
+  r = _mm256_permute2f128_pd(t1, t3, 0x31);
 }
 
 /// Bit t set if sphere p overlaps s[t], t = 0..3.
@@ -52,14 +97,7 @@ inline unsigned overlap4(const Sphere<D>& p, const Sphere<D>* s, const Extent<D>
   const double* m = &s[0].x[0];
   __m256d x[D], r;
   if constexpr (D == 3) {  // four (x0, x1, x2, r) rows transposed
-    const __m256d l0 = _mm256_loadu_pd(m), l1 = _mm256_loadu_pd(m + 4), l2 = _mm256_loadu_pd(m + 8),
-                  l3 = _mm256_loadu_pd(m + 12);
-    const __m256d t0 = _mm256_unpacklo_pd(l0, l1), t1 = _mm256_unpackhi_pd(l0, l1);
-    const __m256d t2 = _mm256_unpacklo_pd(l2, l3), t3 = _mm256_unpackhi_pd(l2, l3);
-    x[0] = _mm256_permute2f128_pd(t0, t2, 0x20);
-    x[2] = _mm256_permute2f128_pd(t0, t2, 0x31);
-    x[1] = _mm256_permute2f128_pd(t1, t3, 0x20);
-    r = _mm256_permute2f128_pd(t1, t3, 0x31);
+    transpose4(_mm256_loadu_pd(m), _mm256_loadu_pd(m + 4), _mm256_loadu_pd(m + 8), _mm256_loadu_pd(m + 12), x, r);
   } else {  // four (x0, x1, r) triples: a = [a0 a1 ar b0], b = [b1 br c0 c1], c = [cr d0 d1 dr]
     const __m256d a = _mm256_loadu_pd(m), b = _mm256_loadu_pd(m + 4), c = _mm256_loadu_pd(m + 8);
     const __m256d u = _mm256_blend_pd(_mm256_blend_pd(a, b, 0b0100), c, 0b0010);  // [a0 d0 c0 b0]
@@ -80,6 +118,67 @@ inline unsigned overlap4_soa(const Sphere<D>& p, const Arrays& a, std::uint32_t 
   __m256d x[D];
   for (int k = 0; k < D; ++k) x[k] = _mm256_loadu_pd(a[k].data() + t);
   return overlap4_lanes<D, B>(p, x, _mm256_loadu_pd(a[D].data() + t), box);
+}
+
+/// Spheres s[idx[0..4)] by coordinate: lane t of x[k] is s[idx[t]].x[k],
+/// of r its radius.
+template <int D>
+inline void load4_indexed(const Sphere<D>* s, const std::uint32_t* idx, __m256d (&x)[D], __m256d& r) {
+  static_assert(D == 2 || D == 3);
+  static_assert(sizeof(Sphere<D>) == (D + 1) * sizeof(double));
+  if constexpr (D == 3) {  // four (x0, x1, x2, r) rows transposed
+    transpose4(_mm256_loadu_pd(&s[idx[0]].x[0]), _mm256_loadu_pd(&s[idx[1]].x[0]), _mm256_loadu_pd(&s[idx[2]].x[0]),
+               _mm256_loadu_pd(&s[idx[3]].x[0]), x, r);
+  } else {  // four (x0, x1) pairs: [a0 a1 b0 b1], [c0 c1 d0 d1] -> lanes a b c d; radii one by one
+    const __m256d ab = _mm256_set_m128d(_mm_loadu_pd(&s[idx[1]].x[0]), _mm_loadu_pd(&s[idx[0]].x[0]));
+    const __m256d cd = _mm256_set_m128d(_mm_loadu_pd(&s[idx[3]].x[0]), _mm_loadu_pd(&s[idx[2]].x[0]));
+    x[0] = _mm256_permute4x64_pd(_mm256_unpacklo_pd(ab, cd), 0b11011000);  // [a0 c0 b0 d0] -> [a0 b0 c0 d0]
+    x[1] = _mm256_permute4x64_pd(_mm256_unpackhi_pd(ab, cd), 0b11011000);
+    r = _mm256_setr_pd(s[idx[0]].r, s[idx[1]].r, s[idx[2]].r, s[idx[3]].r);
+  }
+}
+
+/// Bit t set if sphere p overlaps s[idx[t]], t = 0..3 (a contact list's
+/// candidates, at random places of s); Periodic as overlap4_lanes_pq.
+template <int D, unsigned Periodic>
+inline unsigned overlap4_indexed(const Sphere<D>& p, const Sphere<D>* s, const std::uint32_t* idx,
+                                 const Extent<D>& box) {
+  __m256d x[D], r;
+  load4_indexed<D>(s, idx, x, r);
+  return overlap4_lanes_axes<D, Periodic>(p, x, r, box);
+}
+
+/// Bit t set if s[first[t]] overlaps s[second[t]], t = 0..3: four pairs of
+/// a list, each its own two spheres (dx = x_second - x_first).
+template <int D, unsigned Periodic>
+inline unsigned overlap4_pairs(const Sphere<D>* s, const std::uint32_t* first, const std::uint32_t* second,
+                               const Extent<D>& box) {
+  __m256d p[D], pr, x[D], r;
+  load4_indexed<D>(s, first, p, pr);
+  load4_indexed<D>(s, second, x, r);
+  return overlap4_lanes_pq<D, Periodic>(p, pr, x, r, box);
+}
+
+/// For each 4-bit mask, the 32-bit lanes of its set bits, packed to the front.
+inline constexpr auto kCompressLanes = [] {
+  std::array<std::array<std::int32_t, 4>, 16> t{};
+  for (unsigned m = 0; m < 16; ++m) {
+    unsigned k = 0;
+    for (unsigned b = 0; b < 4; ++b)
+      if (m >> b & 1u) t[m][k++] = static_cast<std::int32_t>(b);
+  }
+  return t;
+}();
+
+/// Writes idx[t], t the set bits of a 4-bit mask, lowest first, to
+/// out[0..popcount): one 16-byte store (the lanes past the count are
+/// scratch, so out must have room for four), no branch on the mask.
+/// Returns the count.
+inline unsigned compress4(std::uint32_t* out, const std::uint32_t* idx, unsigned bits) {
+  const __m128 v = _mm_castsi128_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(idx)));
+  const __m128i lanes = _mm_loadu_si128(reinterpret_cast<const __m128i*>(kCompressLanes[bits].data()));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm_castps_si128(_mm_permutevar_ps(v, lanes)));
+  return static_cast<unsigned>(std::popcount(bits));
 }
 
 /// For each 4-bit mask, the 32-bit lanes of four pairs (p, q_0) ... (p, q_3)
@@ -144,6 +243,29 @@ inline unsigned overlap4_soa(const Sphere<D>& p, const Arrays& a, std::uint32_t 
     bits |= static_cast<unsigned>(overlap<D, B>(p, q, box)) << u;
   }
   return bits;
+}
+
+template <int D, unsigned Periodic>
+inline unsigned overlap4_indexed(const Sphere<D>& p, const Sphere<D>* s, const std::uint32_t* idx,
+                                 const Extent<D>& box) {
+  unsigned bits = 0;
+  for (unsigned t = 0; t < 4; ++t) bits |= static_cast<unsigned>(overlap_axes<D, Periodic>(p, s[idx[t]], box)) << t;
+  return bits;
+}
+
+template <int D, unsigned Periodic>
+inline unsigned overlap4_pairs(const Sphere<D>* s, const std::uint32_t* first, const std::uint32_t* second,
+                               const Extent<D>& box) {
+  unsigned bits = 0;
+  for (unsigned t = 0; t < 4; ++t)
+    bits |= static_cast<unsigned>(overlap_axes<D, Periodic>(s[first[t]], s[second[t]], box)) << t;
+  return bits;
+}
+
+inline unsigned compress4(std::uint32_t* out, const std::uint32_t* idx, unsigned bits) {
+  unsigned n = 0;
+  for (; bits != 0; bits &= bits - 1) out[n++] = idx[std::countr_zero(bits)];
+  return n;
 }
 
 inline unsigned append4(std::pair<std::uint32_t, std::uint32_t>* out, std::uint32_t p, std::uint32_t q,
