@@ -592,7 +592,7 @@ class ContactList {
       keys_of_.emplace(n);
       pair_n_ = n;
     }
-    const detail::PairKeys& ps = *keys_of_;
+    const detail::PairKeys ps = *keys_of_;  // a copy: the sorts' stores below cannot change its shift
     const std::span<const Sphere<D>> gspan(gs_.data(), gs_.size());
     // The grid's pairs as keys, one list per thread, stored a batch at a
     // time (base/threads.hpp, kTakesBatches).
@@ -640,41 +640,49 @@ class ContactList {
     // twice the two passes: `pour_replay --profile-skin`).
     cstart_.assign(n + 1, 0);
     by_second_.assign(n + 1, 0);
+    std::uint32_t* const cst = cstart_.data();  // raw arrays: the counts' stores alias no member
+    std::uint32_t* const bys = by_second_.data();
     std::size_t total = 0;
     for (const auto& l : keys_) {
       total += l.size();
       for (const std::uint64_t k : l) {
-        ++cstart_[ps.first(k) + 1];
-        ++by_second_[ps.second(k) + 1];
+        ++cst[ps.first(k) + 1];
+        ++bys[ps.second(k) + 1];
       }
     }
     for (std::size_t i = 0; i < n; ++i) {
-      cstart_[i + 1] += cstart_[i];
-      by_second_[i + 1] += by_second_[i];
+      cst[i + 1] += cst[i];
+      bys[i + 1] += bys[i];
     }
     sorted_keys_.resize(total);
+    std::uint64_t* const sk = sorted_keys_.data();
     for (const auto& l : keys_)
-      for (const std::uint64_t k : l) sorted_keys_[by_second_[ps.second(k)]++] = k;
+      for (const std::uint64_t k : l) sk[bys[ps.second(k)]++] = k;
     fill_.assign(cstart_.begin(), cstart_.end() - 1);
     cand_.resize(total);
     first_.resize(total);
-    for (const std::uint64_t k : sorted_keys_) {
-      const std::uint32_t i = ps.first(k), at = fill_[i]++;
-      cand_[at] = ps.second(k);
-      first_[at] = i;
+    std::uint32_t* const fill = fill_.data();
+    std::uint32_t* const cand = cand_.data();
+    std::uint32_t* const first = first_.data();
+    for (std::size_t c = 0; c < total; ++c) {
+      const std::uint64_t k = sk[c];
+      const std::uint32_t i = ps.first(k), at = fill[i]++;
+      cand[at] = ps.second(k);
+      first[at] = i;
     }
     // Commit.
     s_.swap(next_);
     xold_.swap(xref_);  // the build before's references, for two_step_travel
     xref_.swap(raw_);
     rbig_.resize(n);
-    rbig_max_ = 0;
+    double rbig_max = 0;
     double m1 = std::numeric_limits<double>::infinity(), m2 = m1;
     for (std::size_t i = 0; i < n; ++i) {
       rbig_[i] = gs_[i].r;
-      rbig_max_ = std::max(rbig_max_, gs_[i].r);
+      rbig_max = std::max(rbig_max, gs_[i].r);
       two_smallest(gs_[i].r - s_[i].r, m1, m2);
     }
+    rbig_max_ = rbig_max;
     margin_built_ = n > 1 ? m1 + m2 : 0;
     steps_built_ = stats_.steps;
     for (int k = 0; k < D; ++k) side_built_[k] = box_.side[k];
