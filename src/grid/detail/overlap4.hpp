@@ -138,18 +138,9 @@ inline void load4_indexed(const Sphere<D>* s, const std::uint32_t* idx, __m256d 
   }
 }
 
-/// Bit t set if sphere p overlaps s[idx[t]], t = 0..3 (a contact list's
-/// candidates, at random places of s); Periodic as overlap4_lanes_pq.
-template <int D, unsigned Periodic>
-inline unsigned overlap4_indexed(const Sphere<D>& p, const Sphere<D>* s, const std::uint32_t* idx,
-                                 const Extent<D>& box) {
-  __m256d x[D], r;
-  load4_indexed<D>(s, idx, x, r);
-  return overlap4_lanes_axes<D, Periodic>(p, x, r, box);
-}
-
 /// Bit t set if s[first[t]] overlaps s[second[t]], t = 0..3: four pairs of
-/// a list, each its own two spheres (dx = x_second - x_first).
+/// a list, each its own two spheres (dx = x_second - x_first); the axes whose
+/// bit is set in Periodic take the minimum image.
 template <int D, unsigned Periodic>
 inline unsigned overlap4_pairs(const Sphere<D>* s, const std::uint32_t* first, const std::uint32_t* second,
                                const Extent<D>& box) {
@@ -242,14 +233,6 @@ inline unsigned overlap4_soa(const Sphere<D>& p, const Arrays& a, std::uint32_t 
     q.r = a[D][t + u];
     bits |= static_cast<unsigned>(overlap<D, B>(p, q, box)) << u;
   }
-  return bits;
-}
-
-template <int D, unsigned Periodic>
-inline unsigned overlap4_indexed(const Sphere<D>& p, const Sphere<D>* s, const std::uint32_t* idx,
-                                 const Extent<D>& box) {
-  unsigned bits = 0;
-  for (unsigned t = 0; t < 4; ++t) bits |= static_cast<unsigned>(overlap_axes<D, Periodic>(p, s[idx[t]], box)) << t;
   return bits;
 }
 
