@@ -302,13 +302,6 @@ class ContactList {
 
   double inflated(double r) const { return r * (1 + params_.skin_rel) + 0.5 * params_.skin; }
 
-  /// The test of the grid (grid/geometry.hpp), per axis: periodic axes (bits
-  /// of Mask) take the minimum image.
-  template <unsigned Mask>
-  static bool touching(const Sphere<D>& p, const Sphere<D>& q, const Extent<D>& side) {
-    return detail::overlap_axes<D, Mask>(p, q, side);
-  }
-
   /// Keeps m1 <= m2 the two smallest values seen, given one more.
   static void two_smallest(double m, double& m1, double& m2) {
     if (m < m1) {
@@ -703,7 +696,7 @@ class ContactList {
       }
       test_with([w = wrapped_.data()](std::uint32_t i) { return w[i]; },
                 [w = wrapped_.data(), side = box_.side](const Sphere<D>& p, std::uint32_t j) {
-                  return touching<(1u << D) - 1>(p, w[j], side);
+                  return detail::overlap_axes<D, (1u << D) - 1>(p, w[j], side);  // the grid's test (grid/geometry.hpp)
                 });
       return;
     }

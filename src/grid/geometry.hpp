@@ -63,24 +63,42 @@ inline double min_image(double dx, double a) {
   return dx;
 }
 
-/// Squared centre distance; periodic axes use the minimum image.
-template <int D, Boundary B>
-inline double dist2(const std::array<double, D>& a, const std::array<double, D>& b,
-                    const Extent<D>& box) {
+/// Squared centre distance; the axes whose bit is set in Periodic use the
+/// minimum image (a contact list's boundaries per axis).
+template <int D, unsigned Periodic>
+inline double dist2_axes(const std::array<double, D>& a, const std::array<double, D>& b, const Extent<D>& box) {
   double s = 0.0;
   for (int k = 0; k < D; ++k) {
     double dx = b[k] - a[k];
-    if constexpr (B == Boundary::periodic) dx = min_image(dx, box[k]);
+    if (Periodic >> k & 1u) dx = min_image(dx, box[k]);
     s += dx * dx;
   }
   return s;
 }
 
+/// The narrow-phase test: strictly overlapping bounding spheres; Periodic
+/// as dist2_axes.
+template <int D, unsigned Periodic>
+inline bool overlap_axes(const Sphere<D>& p, const Sphere<D>& q, const Extent<D>& box) {
+  const double rs = p.r + q.r;
+  return dist2_axes<D, Periodic>(p.x, q.x, box) < rs * rs;
+}
+
+/// The axes' periodic bits of a boundary for every axis.
+template <int D, Boundary B>
+inline constexpr unsigned kPeriodicAxes = B == Boundary::periodic ? (1u << D) - 1 : 0u;
+
+/// Squared centre distance; periodic axes use the minimum image.
+template <int D, Boundary B>
+inline double dist2(const std::array<double, D>& a, const std::array<double, D>& b,
+                    const Extent<D>& box) {
+  return dist2_axes<D, kPeriodicAxes<D, B>>(a, b, box);
+}
+
 /// The narrow-phase test: strictly overlapping bounding spheres.
 template <int D, Boundary B>
 inline bool overlap(const Sphere<D>& p, const Sphere<D>& q, const Extent<D>& box) {
-  const double rs = p.r + q.r;
-  return dist2<D, B>(p.x, q.x, box) < rs * rs;
+  return overlap_axes<D, kPeriodicAxes<D, B>>(p, q, box);
 }
 
 }  // namespace detail

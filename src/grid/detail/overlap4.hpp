@@ -22,21 +22,6 @@
 
 namespace hgrid::detail {
 
-/// The scalar test (geometry.hpp's operations) with the minimum image on
-/// the axes whose bit is set in Periodic: a contact list's boundaries per
-/// axis.
-template <int D, unsigned Periodic>
-inline bool overlap_axes(const Sphere<D>& p, const Sphere<D>& q, const Extent<D>& box) {
-  double s2 = 0.0;
-  for (int k = 0; k < D; ++k) {
-    double dx = q.x[k] - p.x[k];
-    if (Periodic >> k & 1u) dx = min_image(dx, box[k]);
-    s2 += dx * dx;
-  }
-  const double rs = p.r + q.r;
-  return s2 < rs * rs;
-}
-
 #if defined(__AVX2__)
 inline constexpr bool kOverlap4 = true;
 
@@ -75,7 +60,7 @@ inline unsigned overlap4_lanes_axes(const Sphere<D>& p, const __m256d (&x)[D], _
 /// The same with one boundary for every axis.
 template <int D, Boundary B>
 inline unsigned overlap4_lanes(const Sphere<D>& p, const __m256d (&x)[D], __m256d r, const Extent<D>& box) {
-  return overlap4_lanes_axes<D, B == Boundary::periodic ? (1u << D) - 1 : 0u>(p, x, r, box);
+  return overlap4_lanes_axes<D, kPeriodicAxes<D, B>>(p, x, r, box);
 }
 
 /// Four (x0, x1, x2, r) rows l0..l3 as coordinates: lane t of x[k] is
